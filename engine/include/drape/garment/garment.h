@@ -1,0 +1,34 @@
+#pragma once
+// A simulation-ready garment: every panel meshed into triangles, placed in 3D, with stitches as pairs of
+// vertices. Panels are meshed independently, so a stitched seam has a vertex on each side.
+#include <Eigen/Core>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace drape {
+
+struct GarmentStitch {
+  int stitch = 0;      // index into Pattern::stitches
+  int firstPair = 0;   // range [firstPair, firstPair + pairCount) in Garment::stitchPairs
+  int pairCount = 0;
+};
+
+struct Garment {
+  Eigen::MatrixX2d rest;        // |V| x 2, metres: pattern coordinates (material frame: warp = x, weft = y)
+  Eigen::MatrixX2d uvs;         // |V| x 2, texture coordinates derived from rest (metres, panels side by side)
+  Eigen::MatrixX3d positions;   // |V| x 3, metres: placed 3D positions
+  Eigen::MatrixX3i triangles;   // |F| x 3, counter-clockwise in the pattern plane
+  Eigen::VectorXi trianglePanel;  // |F|, panel index of each triangle
+  Eigen::VectorXi vertexPanel;    // |V|, panel index of each vertex
+  std::vector<std::string> panelNames;
+  // For panel p and its edge e, the boundary vertices along that edge from its start to its end (inclusive).
+  std::vector<std::vector<std::vector<int>>> edgeVertices;
+  std::vector<std::pair<int, int>> stitchPairs;  // vertex pairs sewn together
+  std::vector<GarmentStitch> stitches;
+
+  int vertexCount() const { return static_cast<int>(positions.rows()); }
+  int triangleCount() const { return static_cast<int>(triangles.rows()); }
+};
+
+}  // namespace drape
