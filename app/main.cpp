@@ -1,2 +1,33 @@
-#include <cstdio>
-int main() { std::puts("drape"); return 0; }
+// The `drape` executable. Headless modes never create a QApplication; any error becomes one line on stderr
+// and exit status 1.
+#include <exception>
+#include <iostream>
+
+#include "cli_options.h"
+#include "commands.h"
+#include "drape/core/input_error.h"
+#include "gui_entry.h"
+
+int main(int argc, char** argv) {
+  using namespace drape::app;
+  try {
+    const CliOptions options = parseCommandLine(argc, argv);
+    switch (options.mode) {
+      case Mode::Help: std::cout << usageText(); return 0;
+      case Mode::Version: std::cout << "drape " << DRAPE_VERSION << "\n"; return 0;
+      case Mode::ListSettings: return runListSettings(std::cout);
+      case Mode::ListFabrics: return runListFabrics(std::cout);
+      case Mode::Info: return runInfo(options, std::cout);
+      case Mode::Simulate: return runSimulate(options, std::cout);
+      case Mode::Render: return runRender(options, std::cout);
+      case Mode::Gui: return runGui(argc, argv, options);
+    }
+  } catch (const drape::InputError& e) {
+    std::cerr << "drape: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "drape: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,148 @@
+#include "cli_options.h"
+
+#include <charconv>
+#include <cmath>
+
+#include "drape/core/input_error.h"
+
+namespace drape::app {
+namespace {
+
+bool parseSize(const std::string& text, int& w, int& h) {
+  const auto x = text.find('x');
+  if (x == std::string::npos) return false;
+  auto [p1, e1] = std::from_chars(text.data(), text.data() + x, w);
+  auto [p2, e2] = std::from_chars(text.data() + x + 1, text.data() + text.size(), h);
+  return e1 == std::errc() && e2 == std::errc() && p1 == text.data() + x && p2 == text.data() + text.size() &&
+         w >= 16 && h >= 16 && w <= 8192 && h <= 8192;
+}
+
+void requireOneOf(const std::string& option, const std::string& value, std::initializer_list<const char*> valid) {
+  std::string list;
+  for (const char* v : valid) {
+    if (value == v) return;
+    list += (list.empty() ? "" : "|") + std::string(v);
+  }
+  throw InputError(option + ": '" + value + "' is not one of " + list);
+}
+
+}  // namespace
+
+std::string usageText() {
+  return R"(Usage:
+  drape [SCENE.json]                      open the desktop application (default scene if none given)
+  drape --info FILE [scene options]       describe a pattern, scene or avatar file
+  drape --simulate SCENE -o OUT.(obj|glb|ply|stl) [--solver none] [--stats STATS.json] [--max-sim-time S]
+                                          build the garment, run the solver, write the garment
+  drape --render SCENE -o OUT.png [--view front|back|left|right|three-quarter|all] [--size WxH]
+                                          [--mode shaded|wireframe|strain|domains|contacts] [--simulate none]
+                                          render a PNG headless (no display server needed)
+  drape --list-settings                   every setting with its default, unit and meaning
+  drape --list-fabrics                    the fabric presets
+  drape --help | --version
+
+Scene options (every headless mode):
+  SCENE may be a scene file or a bare pattern file (GarmentCode JSON).
+  --avatar FILE            avatar or collider mesh (obj, glb, gltf, fbx, ply, stl)
+  --avatar-units m|cm|mm   unit of the avatar file (default m)
+  --fabric PRESET          fabric of every panel (see --list-fabrics)
+  --set KEY=VALUE          override any setting by its dotted name (repeatable; see --list-settings)
+
+Solvers: --solver none writes the placed garment; the preview and drape solvers are not available yet.
+Exit status: 0 on success, 1 on bad input or failure (one line on stderr names the file and the problem).
+)";
+}
+
+CliOptions parseCommandLine(int argc, char** argv) {
+  CliOptions o;
+  bool modeSet = false;
+  auto setMode = [&](Mode m, const std::string& flag) {
+    if (modeSet) throw InputError(flag + ": only one of --info, --simulate, --render, --help, --version at a time");
+    o.mode = m;
+    modeSet = true;
+  };
+  auto value = [&](int& i, const std::string& flag) -> std::string {
+    if (i + 1 >= argc) throw InputError(flag + ": missing value");
+    return argv[++i];
+  };
+  std::vector<std::string> positional;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--help" || a == "-h") {
+      setMode(Mode::Help, a);
+    } else if (a == "--version") {
+      setMode(Mode::Version, a);
+    } else if (a == "--list-settings") {
+      setMode(Mode::ListSettings, a);
+    } else if (a == "--list-fabrics") {
+      setMode(Mode::ListFabrics, a);
+    } else if (a == "--info") {
+      setMode(Mode::Info, a);
+      o.scene.input = value(i, a);
+    } else if (a == "--render") {
+      setMode(Mode::Render, a);
+      o.scene.input = value(i, a);
+    } else if (a == "--simulate") {
+      // In --render mode --simulate names the stage to run first; otherwise it is the mode.
+      if (o.mode == Mode::Render) {
+        o.simulateStage = value(i, a);
+        requireOneOf(a, o.simulateStage, {"none", "preview", "drape", "full"});
+      } else {
+        setMode(Mode::Simulate, a);
+        o.scene.input = value(i, a);
+      }
+    } else if (a == "-o" || a == "--output") {
+      o.output = value(i, a);
+    } else if (a == "--stats") {
+      o.stats = value(i, a);
+    } else if (a == "--solver") {
+      o.solver = value(i, a);
+      requireOneOf(a, o.solver, {"none", "preview", "drape", "full"});
+    } else if (a == "--view") {
+      o.view = value(i, a);
+      requireOneOf(a, o.view, {"front", "back", "left", "right", "three-quarter", "all"});
+    } else if (a == "--mode") {
+      o.renderMode = value(i, a);
+      requireOneOf(a, o.renderMode, {"shaded", "wireframe", "strain", "domains", "contacts"});
+    } else if (a == "--size") {
+      const std::string s = value(i, a);
+      if (!parseSize(s, o.width, o.height)) throw InputError(a + ": '" + s + "' is not WxH with 16..8192 pixels each");
+    } else if (a == "--max-sim-time") {
+      const std::string s = value(i, a);
+      try {
+        o.maxSimTime = std::stod(s);
+      } catch (...) {
+        o.maxSimTime = -1;
+      }
+      if (!(o.maxSimTime > 0) || !std::isfinite(o.maxSimTime))
+        throw InputError(a + ": '" + s + "' is not a positive number of seconds");
+    } else if (a == "--avatar") {
+      o.scene.avatarFile = value(i, a);
+    } else if (a == "--avatar-units") {
+      o.scene.avatarUnits = value(i, a);
+      requireOneOf(a, o.scene.avatarUnits, {"m", "cm", "mm"});
+    } else if (a == "--fabric") {
+      o.scene.fabricPreset = value(i, a);
+    } else if (a == "--set") {
+      const std::string kv = value(i, a);
+      const auto eq = kv.find('=');
+      if (eq == std::string::npos || eq == 0) throw InputError("--set: '" + kv + "' is not KEY=VALUE");
+      o.scene.overrides.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+    } else if (!a.empty() && a[0] == '-') {
+      throw InputError("unknown option '" + a + "' (see drape --help)");
+    } else {
+      positional.push_back(a);
+    }
+  }
+  if (o.mode == Mode::Gui) {
+    if (positional.size() > 1) throw InputError("more than one scene given: '" + positional[1] + "'");
+    if (!positional.empty()) o.scene.input = positional[0];
+  } else if (!positional.empty()) {
+    throw InputError("unexpected argument '" + positional[0] + "' (see drape --help)");
+  }
+  if ((o.mode == Mode::Simulate || o.mode == Mode::Render) && o.output.empty())
+    throw InputError(std::string(o.mode == Mode::Render ? "--render" : "--simulate") + ": missing -o OUTPUT");
+  return o;
+}
+
+}  // namespace drape::app

@@ -1,0 +1,31 @@
+#pragma once
+// The `drape` command line: one mode plus its options.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "drape/scene/scene.h"
+
+namespace drape::app {
+
+enum class Mode { Gui, Help, Version, Info, Simulate, Render, ListSettings, ListFabrics };
+
+struct CliOptions {
+  Mode mode = Mode::Gui;
+  SceneRequest scene;   // input file, --avatar, --avatar-units, --fabric, --set
+  std::string output;   // -o
+  std::string stats;    // --stats
+  std::string solver = "none";        // --solver none|preview|drape|full
+  std::string simulateStage = "none";  // --simulate value in --render mode
+  std::string view = "three-quarter";  // --view
+  std::string renderMode = "shaded";   // --mode
+  int width = 1024, height = 768;      // --size WxH
+  double maxSimTime = -1.0;            // --max-sim-time
+};
+
+// Parses argv; throws InputError with a one-line message for anything malformed.
+CliOptions parseCommandLine(int argc, char** argv);
+
+std::string usageText();
+
+}  // namespace drape::app

@@ -1,0 +1,70 @@
+#pragma once
+// A scene: the pattern, the avatar and generated colliders, the fabrics, the pins and every setting.
+// Loaded from a scene file (docs/FORMATS.md) or assembled from a bare pattern plus command-line options.
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "drape/core/diagnostics.h"
+#include "drape/fabric/fabric.h"
+#include "drape/geometry/triangle_mesh.h"
+#include "drape/pattern/pattern.h"
+#include "drape/scene/settings.h"
+
+namespace drape {
+
+// A collider the scene generates itself (the tablecloth's sphere), in metres.
+struct Collider {
+  std::string name;  // "sphere", "box"
+  TriangleMesh mesh;
+};
+
+// A set of garment vertices held in place: a whole panel edge (by index or label), or every vertex whose placed
+// position lies in an axis-aligned region (metres).
+struct PinSpec {
+  std::string panel;      // empty for a region pin
+  int edge = -1;          // edge index, or -1 when edgeLabel is used
+  std::string edgeLabel;  // edge "label" from the pattern file
+  bool byRegion = false;
+  BoundingBox region;
+  std::string where;  // "scene.json: pin 2", for messages
+};
+
+struct Scene {
+  std::filesystem::path file;         // the scene file, or the bare pattern file
+  std::filesystem::path patternFile;  // resolved
+  std::filesystem::path avatarFile;   // resolved; empty when the scene has no avatar
+  Settings settings;
+  Pattern pattern;
+  TriangleMesh avatar;              // no triangles when the scene has no avatar
+  std::vector<Collider> colliders;  // generated primitives
+  Fabric fabric;                    // default fabric of every panel, overrides applied
+  std::map<std::string, Fabric> panelFabrics;  // panel name -> fabric, where it differs from the default
+  std::vector<PinSpec> pins;
+  Diagnostics diagnostics;          // warnings from every loader
+
+  bool hasAvatar() const { return avatar.triangleCount() > 0; }
+  const Fabric& fabricOfPanel(const std::string& panel) const {
+    auto it = panelFabrics.find(panel);
+    return it == panelFabrics.end() ? fabric : it->second;
+  }
+};
+
+// What a caller asks for: a scene file or a bare pattern, plus command-line choices applied over it.
+struct SceneRequest {
+  std::filesystem::path input;  // scene .json or pattern .json
+  std::string avatarFile;       // --avatar (relative to the working directory)
+  std::string avatarUnits;      // --avatar-units m|cm|mm
+  std::string fabricPreset;     // --fabric
+  std::vector<std::pair<std::string, std::string>> overrides;  // --set key=value, applied last
+};
+
+// Loads and validates everything the scene names; throws InputError naming the file and the element.
+Scene loadScene(const SceneRequest& request);
+
+// True when file holds a sewing pattern (a "pattern" object with panels) rather than a scene.
+bool isPatternFile(const std::filesystem::path& file);
+
+}  // namespace drape

@@ -1,0 +1,74 @@
+#include "core/json_reader.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "drape/core/input_error.h"
+
+namespace drape::json {
+
+nlohmann::json parse(const std::string& text, const std::string& source) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // Convert the byte offset into a line and column.
+    const size_t offset = std::min<size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
+    size_t line = 1, column = 1;
+    for (size_t i = 0; i < offset; ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        column = 1;
+      } else {
+        ++column;
+      }
+    }
+    std::string reason = e.what();
+    if (auto pos = reason.find("syntax error"); pos != std::string::npos) reason = reason.substr(pos);
+    throw InputError(source + ": invalid JSON at line " + std::to_string(line) + ", column " + std::to_string(column) +
+                     ": " + reason);
+  }
+}
+
+nlohmann::json parseFile(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) throw InputError(file.string() + ": file not found");
+  if (std::filesystem::is_directory(file, ec)) throw InputError(file.string() + ": is a directory, not a file");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file.string() + ": cannot open file for reading");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return parse(ss.str(), file.string());
+}
+
+double number(const nlohmann::json& j, const std::string& key, const std::string& where) {
+  if (!j.contains(key)) throw InputError(where + ": missing field '" + key + "'");
+  const auto& v = j.at(key);
+  if (!v.is_number()) throw InputError(where + ": field '" + key + "' must be a number");
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) throw InputError(where + ": field '" + key + "' is not finite");
+  return d;
+}
+
+std::string text(const nlohmann::json& j, const std::string& key, const std::string& where) {
+  if (!j.contains(key)) throw InputError(where + ": missing field '" + key + "'");
+  const auto& v = j.at(key);
+  if (!v.is_string()) throw InputError(where + ": field '" + key + "' must be a string");
+  return v.get<std::string>();
+}
+
+std::string scalarText(const nlohmann::json& value, const std::string& where) {
+  if (value.is_string()) return value.get<std::string>();
+  if (value.is_boolean()) return value.get<bool>() ? "true" : "false";
+  if (value.is_number_integer()) return std::to_string(value.get<long long>());
+  if (value.is_number()) {
+    std::ostringstream os;
+    os.precision(17);
+    os << value.get<double>();
+    return os.str();
+  }
+  if (value.is_null()) return "";
+  throw InputError(where + ": expected a number, a string or true/false");
+}
+
+}  // namespace drape::json

@@ -1,0 +1,157 @@
+// Exit codes and messages of the drape executable's headless modes.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "run_process.h"
+#include "shared_data.h"
+
+namespace drape::test {
+namespace {
+
+const std::filesystem::path kScratch = testOutputDir() / "cli";
+
+ProcessResult drape(const std::string& args) {
+  return runProcess(quote(DRAPE_EXECUTABLE) + " " + args + " </dev/null", kScratch);
+}
+
+std::string asset(const std::string& relative) { return quote((assetsDir() / relative).string()); }
+
+TEST(Cli, HelpAndVersion) {
+  auto help = drape("--help");
+  EXPECT_EQ(help.exitCode, 0);
+  EXPECT_NE(help.out.find("--info FILE"), std::string::npos);
+  EXPECT_NE(help.out.find("--set KEY=VALUE"), std::string::npos);
+  auto version = drape("--version");
+  EXPECT_EQ(version.exitCode, 0);
+  EXPECT_EQ(version.out.rfind("drape ", 0), 0u);
+}
+
+TEST(Cli, UnknownOptionIsOneLineError) {
+  auto r = drape("--frobnicate");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("unknown option '--frobnicate'"), std::string::npos);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1);
+}
+
+TEST(Cli, InfoOnDefaultScene) {
+  auto r = drape("--info " + asset("scenes/default.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("panels: 1"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("triangles:"), std::string::npos);
+  EXPECT_NE(r.out.find("bounding box:"), std::string::npos);
+  EXPECT_NE(r.out.find("collider: sphere"), std::string::npos);
+}
+
+TEST(Cli, InfoOnMissingFileNamesIt) {
+  auto r = drape("--info /nonexistent/scene.json");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("/nonexistent/scene.json"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("not found"), std::string::npos) << r.err;
+}
+
+TEST(Cli, InfoOnMalformedPatternNamesFileAndElement) {
+  auto r = drape("--info " + quote((testDataDir() / "bad" / "scene_unknown_key.json").string()));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("scene_unknown_key.json"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("unknown key 'colour'"), std::string::npos) << r.err;
+}
+
+TEST(Cli, SetOverridesASettingAndChangesTheMesh) {
+  auto coarse = drape("--info " + asset("scenes/default.json") + " --set mesh.target_edge_length=0.1");
+  auto fine = drape("--info " + asset("scenes/default.json") + " --set mesh.target_edge_length=0.05");
+  ASSERT_EQ(coarse.exitCode, 0) << coarse.err;
+  ASSERT_EQ(fine.exitCode, 0) << fine.err;
+  auto triangles = [](const std::string& out) {
+    const auto g = out.find("garment");
+    const auto t = out.find("triangles: ", g);
+    return std::stoi(out.substr(t + 11));
+  };
+  // Halving the edge length roughly quadruples the triangle count.
+  const double ratio = double(triangles(fine.out)) / triangles(coarse.out);
+  EXPECT_GT(ratio, 2.5);
+  EXPECT_LT(ratio, 6.0);
+}
+
+TEST(Cli, UnknownSetKeyListsValidKeys) {
+  auto r = drape("--info " + asset("scenes/default.json") + " --set mesh.edge=0.1");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("unknown setting 'mesh.edge'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("mesh.target_edge_length"), std::string::npos) << r.err;
+}
+
+TEST(Cli, BadSetValueIsRejected) {
+  auto r = drape("--info " + asset("scenes/default.json") + " --set mesh.target_edge_length=abc");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("'abc' is not a number"), std::string::npos) << r.err;
+}
+
+TEST(Cli, UnknownFabricListsPresets) {
+  auto r = drape("--info " + asset("scenes/default.json") + " --fabric velvet");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("unknown fabric preset 'velvet'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("denim"), std::string::npos) << r.err;
+}
+
+TEST(Cli, SimulateNoneWritesPlacedGarmentAndStats) {
+  const auto obj = kScratch / "placed.obj";
+  const auto stats = kScratch / "placed_stats.json";
+  std::filesystem::remove(obj);
+  auto r = drape("--simulate " + asset("scenes/default.json") + " --solver none -o " + quote(obj.string()) +
+                 " --stats " + quote(stats.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::string text = readWhole(obj);
+  EXPECT_NE(text.find("\nv "), std::string::npos);
+  EXPECT_NE(text.find("\nvt "), std::string::npos);
+  EXPECT_NE(text.find("\nf "), std::string::npos);
+  const auto j = nlohmann::json::parse(readWhole(stats));
+  for (const char* key : {"status", "wall_time_s", "sim_time_s", "steps", "terms", "per_step"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_GT(j.at("triangles").get<int>(), 1000);
+}
+
+TEST(Cli, SimulateWithoutOutputFails) {
+  auto r = drape("--simulate " + asset("scenes/default.json"));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("missing -o"), std::string::npos) << r.err;
+}
+
+TEST(Cli, UnwritableOutputFailsCleanly) {
+  auto r = drape("--simulate " + asset("scenes/default.json") + " -o /nonexistent-dir/out.obj");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("/nonexistent-dir/out.obj"), std::string::npos) << r.err;
+}
+
+TEST(Cli, BarePatternWithAvatarAndFabric) {
+  DRAPE_SHARED_FILE(pattern, "garmentcode/shirt_mean_specification.json");
+  DRAPE_SHARED_FILE(body, "garmentcode/mean_all.obj");
+  auto r = drape("--info " + quote(pattern.string()) + " --avatar " + quote(body.string()) +
+                 " --avatar-units m --fabric denim");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("panels: 8"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("stitches: 18"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("vertices: 23752"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("fabric: Denim"), std::string::npos) << r.out;
+}
+
+TEST(Cli, InfoOnAvatarFile) {
+  DRAPE_SHARED_FILE(body, "garmentcode/mean_all.obj");
+  auto r = drape("--info " + quote(body.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("vertices: 23752"), std::string::npos) << r.out;
+}
+
+TEST(Cli, ListSettingsAndFabrics) {
+  auto s = drape("--list-settings");
+  EXPECT_EQ(s.exitCode, 0);
+  EXPECT_NE(s.out.find("mesh.target_edge_length = 0.01 [m]"), std::string::npos) << s.out;
+  auto f = drape("--list-fabrics");
+  EXPECT_EQ(f.exitCode, 0);
+  for (const char* name : {"cotton_shirting", "denim", "silk_charmeuse", "jersey_knit", "wool_suiting",
+                           "polyester_chiffon"})
+    EXPECT_NE(f.out.find(name), std::string::npos) << name;
+}
+
+}  // namespace
+}  // namespace drape::test

@@ -1,0 +1,141 @@
+// Scene files: good scenes load with their parts resolved; each malformed scene names the file and the element.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "drape/core/input_error.h"
+#include "drape/garment/garment_builder.h"
+#include "drape/scene/pins.h"
+#include "drape/scene/scene.h"
+#include "shared_data.h"
+
+namespace drape::test {
+namespace {
+
+Scene load(const std::filesystem::path& file, std::vector<std::pair<std::string, std::string>> overrides = {}) {
+  SceneRequest request;
+  request.input = file;
+  request.overrides = std::move(overrides);
+  return loadScene(request);
+}
+
+TEST(SceneLoader, DefaultSceneHasPatternFabricAndSphere) {
+  const Scene scene = load(assetsDir() / "scenes" / "default.json");
+  EXPECT_EQ(scene.pattern.panels.size(), 1u);
+  EXPECT_FALSE(scene.hasAvatar());
+  ASSERT_EQ(scene.colliders.size(), 1u);
+  const BoundingBox box = boundsOf(scene.colliders[0].mesh.vertices);
+  EXPECT_NEAR(box.size().x(), 0.6, 0.01);
+  EXPECT_NEAR(box.center().y(), 0.5, 1e-3);
+  EXPECT_EQ(scene.fabric.name, "Cotton shirting");
+  EXPECT_DOUBLE_EQ(scene.settings.number("mesh.target_edge_length"), 0.02);
+}
+
+TEST(SceneLoader, OverridesApplyOverTheFile) {
+  const Scene scene = load(assetsDir() / "scenes" / "default.json",
+                           {{"mesh.target_edge_length", "0.05"}, {"fabric.density", "0.3"}, {"fabric.preset", "denim"}});
+  EXPECT_DOUBLE_EQ(scene.settings.number("mesh.target_edge_length"), 0.05);
+  EXPECT_EQ(scene.fabric.name, "Denim");
+  EXPECT_DOUBLE_EQ(scene.fabric.density, 0.3);  // the override wins over the preset's 0.41
+  EXPECT_EQ(scene.settings.changed().count("fabric.density"), 1u);
+}
+
+TEST(SceneLoader, BarePatternBecomesAScene) {
+  SceneRequest request;
+  request.input = assetsDir() / "patterns" / "tablecloth.json";
+  request.fabricPreset = "silk_charmeuse";
+  const Scene scene = loadScene(request);
+  EXPECT_EQ(scene.pattern.panels.size(), 1u);
+  EXPECT_EQ(scene.fabric.name, "Silk charmeuse");
+  EXPECT_TRUE(isPatternFile(request.input));
+  EXPECT_FALSE(isPatternFile(assetsDir() / "scenes" / "default.json"));
+}
+
+TEST(SceneLoader, PinsResolveToTheTopCorners) {
+  const Scene scene = load(assetsDir() / "scenes" / "hanging_cloth.json");
+  const Garment garment = buildGarment(scene.pattern, {scene.settings.number("mesh.target_edge_length")});
+  const auto pinned = resolvePins(scene, garment);
+  ASSERT_EQ(pinned.size(), 2u);
+  for (int v : pinned) {
+    EXPECT_NEAR(garment.positions(v, 1), 1.5, 1e-9);
+    EXPECT_NEAR(std::abs(garment.positions(v, 0)), 0.5, 1e-9);
+  }
+}
+
+TEST(SceneLoader, EdgePinSelectsTheWholeEdge) {
+  SceneRequest request;
+  request.input = testOutputDir() / "edge_pin_scene.json";
+  {
+    std::ofstream out(request.input);
+    out << R"({"pattern": ")" << (assetsDir() / "patterns" / "hanging_cloth.json").string()
+        << R"(", "pins": [{"panel": "cloth", "edge_label": "top"}], "mesh": {"target_edge_length": 0.1}})";
+  }
+  const Scene scene = loadScene(request);
+  const Garment garment = buildGarment(scene.pattern, {0.1});
+  const auto pinned = resolvePins(scene, garment);
+  EXPECT_EQ(pinned.size(), 11u);  // 1 m edge at 0.1 m: 10 segments, 11 vertices
+  for (int v : pinned) EXPECT_NEAR(garment.positions(v, 1), 1.5, 1e-9);
+}
+
+struct BadScene {
+  const char* file;
+  std::vector<const char*> expected;
+};
+
+class BadSceneTest : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(BadSceneTest, RaisesInputErrorNamingFileAndElement) {
+  const BadScene& bad = GetParam();
+  const auto file = testDataDir() / "bad" / bad.file;
+  try {
+    const Scene scene = load(file);
+    // Pins that select nothing surface when they are resolved against the garment.
+    const Garment garment = buildGarment(scene.pattern, {scene.settings.number("mesh.target_edge_length")});
+    resolvePins(scene, garment);
+    FAIL() << bad.file << ": no error raised";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(bad.file), std::string::npos) << message;
+    for (const char* part : bad.expected) EXPECT_NE(message.find(part), std::string::npos) << message;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Files, BadSceneTest,
+    ::testing::Values(
+        BadScene{"scene_unknown_key.json", {"unknown key 'colour'", "valid keys"}},
+        BadScene{"scene_missing_pattern.json", {"missing 'pattern'"}},
+        BadScene{"scene_pattern_not_found.json", {"pattern: ", "no_such_pattern.json"}},
+        BadScene{"scene_unknown_collider.json", {"collider 0", "unknown collider type 'cone'"}},
+        BadScene{"scene_collider_bad_center.json", {"collider 0", "'center' must be [x, y, z]"}},
+        BadScene{"scene_collider_negative_radius.json", {"collider 0", "radius must be positive"}},
+        BadScene{"scene_pin_unknown_panel.json", {"pin 0", "no panel 'sleeve'"}},
+        BadScene{"scene_pin_edge_out_of_range.json", {"pin 0", "has no edge 7"}},
+        BadScene{"scene_pin_unknown_label.json", {"pin 0", "no edge labelled 'hem'"}},
+        BadScene{"scene_pin_empty_region.json", {"pin 0", "selects no garment vertex"}},
+        BadScene{"scene_panel_fabric_unknown_panel.json", {"panel_fabrics 'sleeve'", "no panel"}},
+        BadScene{"scene_mesh_negative_edge.json", {"mesh.target_edge_length", "out of range"}},
+        BadScene{"scene_mesh_edge_not_number.json", {"mesh.target_edge_length", "'fine' is not a number"}},
+        BadScene{"scene_unknown_setting.json", {"unknown setting 'mesh.resolution'"}},
+        BadScene{"scene_bad_avatar_units.json", {"avatar.units", "'inch' is not one of m cm mm"}},
+        BadScene{"scene_avatar_not_found.json", {"no_such_body.obj"}},
+        BadScene{"scene_unknown_fabric.json", {"unknown fabric preset 'velvet'"}},
+        BadScene{"scene_invalid_json.json", {"invalid JSON at line 2"}}),
+    [](const auto& info) {
+      std::string name = info.param.file;
+      return name.substr(0, name.find('.'));
+    });
+
+TEST(SceneLoader, RealScenesOnMeanAllLoad) {
+  DRAPE_SHARED_FILE(body, "garmentcode/mean_all.obj");
+  for (const char* name : {"shirt_mean_on_mean_all.json", "dress_pencil_on_mean_all.json",
+                           "gpg_tee_on_mean_all.json", "gpg_skirt_2_panels_on_mean_all.json"}) {
+    const Scene scene = load(testDataDir() / "scenes" / name);
+    EXPECT_TRUE(scene.hasAvatar()) << name;
+    EXPECT_EQ(scene.avatar.vertexCount(), 23752) << name;
+    EXPECT_GT(scene.pattern.panels.size(), 1u) << name;
+  }
+}
+
+}  // namespace
+}  // namespace drape::test

@@ -1,0 +1,50 @@
+#include <gtest/gtest.h>
+
+#include "drape/core/input_error.h"
+#include "drape/scene/settings.h"
+
+namespace drape {
+namespace {
+
+TEST(Settings, DefaultsAndTypedAccess) {
+  Settings s;
+  EXPECT_DOUBLE_EQ(s.number("mesh.target_edge_length"), 0.01);
+  EXPECT_EQ(s.text("avatar.units"), "m");
+  EXPECT_FALSE(s.has("fabric.density"));
+  EXPECT_TRUE(s.changed().empty());
+}
+
+TEST(Settings, SetValidatesTypeRangeAndChoice) {
+  Settings s;
+  s.set("mesh.target_edge_length", "0.005", "test");
+  EXPECT_DOUBLE_EQ(s.number("mesh.target_edge_length"), 0.005);
+  EXPECT_THROW(s.set("mesh.target_edge_length", "0", "test"), InputError);      // below the minimum
+  EXPECT_THROW(s.set("mesh.target_edge_length", "1e-3x", "test"), InputError);  // trailing garbage
+  EXPECT_THROW(s.set("mesh.target_edge_length", "nan", "test"), InputError);
+  EXPECT_THROW(s.set("avatar.units", "feet", "test"), InputError);
+  s.set("avatar.units", "cm", "test");
+  EXPECT_EQ(s.text("avatar.units"), "cm");
+  EXPECT_EQ(s.changed().size(), 2u);
+}
+
+TEST(Settings, UnknownKeyListsEveryValidKey) {
+  Settings s;
+  try {
+    s.set("mesh.size", "1", "--set");
+    FAIL();
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("unknown setting 'mesh.size'"), std::string::npos);
+    for (const auto& spec : Settings::specs()) EXPECT_NE(m.find(spec.key), std::string::npos) << spec.key;
+  }
+}
+
+TEST(Settings, EverySpecDefaultIsValid) {
+  for (const auto& spec : Settings::specs()) {
+    Settings s;
+    if (!spec.defaultValue.empty()) EXPECT_NO_THROW(s.set(spec.key, spec.defaultValue, "default")) << spec.key;
+  }
+}
+
+}  // namespace
+}  // namespace drape
