@@ -1,5 +1,6 @@
-// buildGarment on patterns built in code (straight edges): sampling counts, units, placement, edge vertex
-// lists and stitch pairing, checked against hand computations.
+// buildGarment on patterns built in code (straight edges): sampling counts,
+// units, placement, edge vertex lists and stitch pairing, checked against hand
+// computations.
 #include "drape/garment/garment_builder.h"
 
 #include <gtest/gtest.h>
@@ -11,7 +12,8 @@
 namespace drape {
 namespace {
 
-// A rectangle panel w x h (file units) with corners (0,0), (w,0), (w,h), (0,h), edges 0..3 counter-clockwise.
+// A rectangle panel w x h (file units) with corners (0,0), (w,0), (w,h), (0,h),
+// edges 0..3 counter-clockwise.
 Panel rectangle(const std::string& name, double w, double h) {
   Panel p;
   p.name = name;
@@ -20,9 +22,10 @@ Panel rectangle(const std::string& name, double w, double h) {
   return p;
 }
 
-// Front: 50 x 60 cm at z = +10. Back: same size turned 180 degrees about y, so that its local x runs towards
-// -x in the world, translated to x = 50, z = -10: the front's right edge 1 (bottom -> top) lies over the
-// back's left edge 3 (top -> bottom) and the two side seams are 20 cm apart in z.
+// Front: 50 x 60 cm at z = +10. Back: same size turned 180 degrees about y, so
+// that its local x runs towards -x in the world, translated to x = 50, z = -10:
+// the front's right edge 1 (bottom -> top) lies over the back's left edge 3
+// (top -> bottom) and the two side seams are 20 cm apart in z.
 Pattern frontBack() {
   Pattern pattern;
   pattern.source = "test.json";
@@ -56,7 +59,8 @@ TEST(GarmentBuilder, PlacePanelPointUsesIntrinsicXyz) {
   // Only about z: (1, 0) -> (0, 1).
   p.rotationDeg = {0, 0, 90};
   EXPECT_TRUE(placePanelPoint(p, {1, 0}, 1.0).isApprox(Eigen::Vector3d(1, 3, 3), 1e-12));
-  // R = Rx(90) * Ry(90): Ry takes x to -z, Rx takes -z to +y. (Rz*Ry*Rx would give -z instead.)
+  // R = Rx(90) * Ry(90): Ry takes x to -z, Rx takes -z to +y. (Rz*Ry*Rx would
+  // give -z instead.)
   p.rotationDeg = {90, 90, 0};
   p.translation = {0, 0, 0};
   EXPECT_TRUE(placePanelPoint(p, {1, 0}, 1.0).isApprox(Eigen::Vector3d(0, 1, 0), 1e-12));
@@ -84,7 +88,8 @@ TEST(GarmentBuilder, FrontBackGarment) {
   for (int t = 0; t < g.triangleCount(); ++t) {
     for (int k = 0; k < 3; ++k) EXPECT_EQ(g.vertexPanel(g.triangles(t, k)), g.trianglePanel(t));
   }
-  // 50 cm / 2 cm = 25 segments, 60 cm / 2 cm = 30 segments; edges run corner to corner.
+  // 50 cm / 2 cm = 25 segments, 60 cm / 2 cm = 30 segments; edges run corner to
+  // corner.
   ASSERT_EQ(g.edgeVertices.size(), 2u);
   for (int p = 0; p < 2; ++p) {
     ASSERT_EQ(g.edgeVertices[p].size(), 4u);
@@ -93,7 +98,8 @@ TEST(GarmentBuilder, FrontBackGarment) {
     EXPECT_EQ(g.edgeVertices[p][2].size(), 26u);
     EXPECT_EQ(g.edgeVertices[p][3].size(), 31u);
     for (int e = 0; e < 4; ++e) {
-      EXPECT_EQ(g.edgeVertices[p][e].back(), g.edgeVertices[p][(e + 1) % 4].front());  // shared corners
+      EXPECT_EQ(g.edgeVertices[p][e].back(),
+                g.edgeVertices[p][(e + 1) % 4].front());  // shared corners
       const Eigen::Vector2d start = pattern.panels[p].vertices[e] / 100.0;
       const Eigen::Vector2d end = pattern.panels[p].vertices[(e + 1) % 4] / 100.0;
       const auto& ev = g.edgeVertices[p][e];
@@ -104,14 +110,16 @@ TEST(GarmentBuilder, FrontBackGarment) {
       }
     }
   }
-  // Placed positions: the front is the rest shape at z = 0.1; the back is mirrored in x about 0.25.
+  // Placed positions: the front is the rest shape at z = 0.1; the back is
+  // mirrored in x about 0.25.
   for (int v = 0; v < g.vertexCount(); ++v) {
     const Eigen::Vector2d r = g.rest.row(v);
     const Eigen::Vector3d expected =
         g.vertexPanel(v) == 0 ? Eigen::Vector3d(r.x(), r.y(), 0.1) : Eigen::Vector3d(0.5 - r.x(), r.y(), -0.1);
     EXPECT_LT((g.positions.row(v).transpose() - expected).norm(), 1e-12) << "vertex " << v;
   }
-  // Stitches: 31 pairs each, partners one above the other (same x, y), 0.2 m apart in z.
+  // Stitches: 31 pairs each, partners one above the other (same x, y), 0.2 m
+  // apart in z.
   ASSERT_EQ(g.stitches.size(), 2u);
   ASSERT_EQ(g.stitchPairs.size(), 62u);
   for (const GarmentStitch& s : g.stitches) {
@@ -132,7 +140,8 @@ TEST(GarmentBuilder, StitchedEdgesShareTheLongerSideCount) {
   pattern.source = "test.json";
   pattern.unitsInMeter = 100.0;
   pattern.panels = {rectangle("a", 30, 40), rectangle("b", 20, 25)};
-  // a's edge 1 (40 cm) to b's edge 3 (25 cm): both sides get 40 / 2 = 20 segments.
+  // a's edge 1 (40 cm) to b's edge 3 (25 cm): both sides get 40 / 2 = 20
+  // segments.
   pattern.stitches.push_back(Stitch{{0, 1}, {1, 3}, false});
   // A chain: b's edge 1 (25 cm) to a's edge 3 (40 cm) also gives 20.
   pattern.stitches.push_back(Stitch{{1, 1}, {0, 3}, true});
@@ -165,7 +174,9 @@ TEST(GarmentBuilder, RejectsBadInput) {
     buildGarment(pattern, options);
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "test.json: stitch 2 side a: edge 7 out of range (panel 'front' has 4 edges)");
+    EXPECT_EQ(std::string(e.what()),
+              "test.json: stitch 2 side a: edge 7 out "
+              "of range (panel 'front' has 4 edges)");
   }
   // Too fine: a 50 x 60 cm panel at 0.1 mm is about 7e7 triangles.
   pattern = frontBack();

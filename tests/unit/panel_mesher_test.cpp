@@ -1,5 +1,5 @@
-// meshPanel on simple outlines: area, boundary, orientation, topology and quality checks computed
-// independently of the mesher from the output arrays.
+// meshPanel on simple outlines: area, boundary, orientation, topology and
+// quality checks computed independently of the mesher from the output arrays.
 #include "drape/garment/panel_mesher.h"
 
 #include <gtest/gtest.h>
@@ -17,7 +17,8 @@ namespace {
 
 using Outline = std::vector<Eigen::Vector2d>;
 
-// The corners joined by straight segments, each cut into max(1, round(length / spacing)) equal pieces.
+// The corners joined by straight segments, each cut into max(1, round(length /
+// spacing)) equal pieces.
 Outline sampleCorners(const Outline& corners, double spacing) {
   Outline out;
   for (size_t i = 0; i < corners.size(); ++i) {
@@ -69,7 +70,8 @@ double minAngleDeg(const PanelMesh& m, int t) {
   return best;
 }
 
-// Interior angle of the outline at each point, degrees (outline made counter-clockwise first).
+// Interior angle of the outline at each point, degrees (outline made
+// counter-clockwise first).
 std::vector<double> outlineAnglesDeg(const Outline& b) {
   const double sign = polygonArea(b) > 0 ? 1.0 : -1.0;
   std::vector<double> angles(b.size());
@@ -84,13 +86,14 @@ std::vector<double> outlineAnglesDeg(const Outline& b) {
 }
 
 struct Quality {
-  double minAngle = 180.0;        // over triangles not excused (see checkMesh)
+  double minAngle = 180.0;         // over triangles not excused (see checkMesh)
   double minInteriorEdge = 1e300;  // over edges not on the boundary
   double maxInteriorEdge = 0.0;
   int excused = 0;
 };
 
-// Every property meshPanel promises, checked from the arrays. Returns the quality statistics.
+// Every property meshPanel promises, checked from the arrays. Returns the
+// quality statistics.
 Quality checkMesh(const Outline& boundary, const PanelMesh& m) {
   const int n = static_cast<int>(boundary.size());
   Quality q;
@@ -114,7 +117,8 @@ Quality checkMesh(const Outline& boundary, const PanelMesh& m) {
   const double area = std::abs(polygonArea(boundary));
   EXPECT_NEAR(sum, area, 1e-9 * area);
 
-  // Edge -> number of incident triangles; boundary edges (one triangle) must be the input segments.
+  // Edge -> number of incident triangles; boundary edges (one triangle) must be
+  // the input segments.
   std::map<std::pair<int, int>, int> edgeUse;
   std::set<int> used;
   for (int t = 0; t < m.triangles.rows(); ++t) {
@@ -140,9 +144,10 @@ Quality checkMesh(const Outline& boundary, const PanelMesh& m) {
   // Euler characteristic of a disk: V - E + F = 1.
   EXPECT_EQ(m.vertices.rows() - static_cast<long>(edgeUse.size()) + m.triangles.rows(), 1);
 
-  // Quality. Excused: triangles at an outline corner sharper than 20 degrees, and triangles whose three
-  // vertices all lie on the fixed boundary (the mesher may not split boundary segments to improve them).
-  // Interior edges are the non-boundary edges of the remaining triangles.
+  // Quality. Excused: triangles at an outline corner sharper than 20 degrees,
+  // and triangles whose three vertices all lie on the fixed boundary (the
+  // mesher may not split boundary segments to improve them). Interior edges are
+  // the non-boundary edges of the remaining triangles.
   const std::vector<double> corner = outlineAnglesDeg(boundary);
   for (int t = 0; t < m.triangles.rows(); ++t) {
     bool sharp = false;
@@ -167,9 +172,8 @@ Quality checkMesh(const Outline& boundary, const PanelMesh& m) {
       q.maxInteriorEdge = std::max(q.maxInteriorEdge, len);
     }
   }
-  std::cout << "  V " << m.vertices.rows() << " F " << m.triangles.rows() << " excused " << q.excused
-            << " min angle " << q.minAngle << " interior edges [" << q.minInteriorEdge << ", "
-            << q.maxInteriorEdge << "]\n";
+  std::cout << "  V " << m.vertices.rows() << " F " << m.triangles.rows() << " excused " << q.excused << " min angle "
+            << q.minAngle << " interior edges [" << q.minInteriorEdge << ", " << q.maxInteriorEdge << "]\n";
   return q;
 }
 
@@ -185,7 +189,8 @@ TEST(PanelMesher, Square) {
   const PanelMesh m = meshPanel(b, h, "square");
   const Quality q = checkMesh(b, m);
   expectQuality(q, h);
-  // An equilateral-ish mesh of a unit square at h = 0.05 has on the order of 1 / (0.433 h^2) = 924 triangles.
+  // An equilateral-ish mesh of a unit square at h = 0.05 has on the order of 1
+  // / (0.433 h^2) = 924 triangles.
   EXPECT_GT(m.triangles.rows(), 400);
   EXPECT_LT(m.triangles.rows(), 1400);
 }
@@ -212,7 +217,8 @@ TEST(PanelMesher, LShape) {
 }
 
 TEST(PanelMesher, ThinSliver) {
-  // 1 x 0.02 strip at target 0.05: no room for interior points; every triangle has 3 boundary vertices.
+  // 1 x 0.02 strip at target 0.05: no room for interior points; every triangle
+  // has 3 boundary vertices.
   const double h = 0.05;
   const Outline b = sampleCorners({{0, 0}, {1, 0}, {1, 0.02}, {0, 0.02}}, h);
   const PanelMesh m = meshPanel(b, h, "sliver");
@@ -222,7 +228,8 @@ TEST(PanelMesher, ThinSliver) {
 }
 
 TEST(PanelMesher, SharpCorner) {
-  // A 10 degree wedge with a round-ish end: the tip forces small angles, the rest must be good.
+  // A 10 degree wedge with a round-ish end: the tip forces small angles, the
+  // rest must be good.
   const double h = 0.03;
   const double half = 5.0 * std::numbers::pi / 180.0;
   Outline corners = {{0, 0}};
@@ -237,8 +244,22 @@ TEST(PanelMesher, SharpCorner) {
   expectQuality(q, h);
 }
 
+TEST(PanelMesher, VerySharpCornerAndCoarseBoundaryTerminate) {
+  // A 1 degree wedge, and a square given by its 4 corners only with a target
+  // 100 times smaller: the mesher may not split the boundary, so it cannot
+  // reach the target, but it must stop with a valid mesh.
+  const double half = 0.5 * std::numbers::pi / 180.0;
+  const Outline wedge =
+      sampleCorners({{0, 0}, {std::cos(half), -std::sin(half)}, {std::cos(half), std::sin(half)}}, 0.01);
+  checkMesh(wedge, meshPanel(wedge, 0.01, "wedge"));
+  const Outline square = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  const PanelMesh m = meshPanel(square, 0.01, "coarse");
+  checkMesh(square, m);
+}
+
 TEST(PanelMesher, NearlyCollinearBoundaryPoints) {
-  // Points along the bottom edge jitter by 1e-12: nearly collinear, still a simple polygon.
+  // Points along the bottom edge jitter by 1e-12: nearly collinear, still a
+  // simple polygon.
   const double h = 0.1;
   Outline b = sampleCorners({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, h);
   for (size_t i = 1; i < 10; ++i) b[i].y() = (i % 2 ? 1e-12 : -1e-12);

@@ -16,15 +16,16 @@ struct GarmentStitch {
 
 struct Garment {
   Eigen::MatrixX2d rest;        // |V| x 2, metres: pattern coordinates (material frame: warp = x, weft = y)
-  Eigen::MatrixX2d uvs;         // |V| x 2, texture coordinates derived from rest (metres, panels side by side)
+  Eigen::MatrixX2d uvs;         // |V| x 2, texture coordinates: equal to rest (metres, each panel in its own frame)
   Eigen::MatrixX3d positions;   // |V| x 3, metres: placed 3D positions
   Eigen::MatrixX3i triangles;   // |F| x 3, counter-clockwise in the pattern plane
   Eigen::VectorXi trianglePanel;  // |F|, panel index of each triangle
   Eigen::VectorXi vertexPanel;    // |V|, panel index of each vertex
   std::vector<std::string> panelNames;
-  // For panel p and its edge e, the boundary vertices along that edge from its start to its end (inclusive).
+  // For panel p and its edge e, the boundary vertices along that edge from its start to its end (inclusive);
+  // consecutive edges share their corner vertex.
   std::vector<std::vector<std::vector<int>>> edgeVertices;
-  std::vector<std::pair<int, int>> stitchPairs;  // vertex pairs sewn together
+  std::vector<std::pair<int, int>> stitchPairs;  // vertex pairs sewn together: (side a vertex, side b vertex)
   std::vector<GarmentStitch> stitches;
 
   int vertexCount() const { return static_cast<int>(positions.rows()); }

@@ -14,7 +14,12 @@ struct PanelMesh {
 };
 
 // boundary: closed loop (last point not repeated), either orientation; targetEdgeLength in the same units.
-// Throws InputError (with context as the message prefix) when the boundary cannot be meshed.
+// The boundary should already be sampled at about targetEdgeLength: the mesher inserts interior points only
+// (refining to longest edge <= 1.3 x target and smallest angle >= ~25 degrees where the fixed boundary allows)
+// and skips refinement points that would encroach a boundary segment.
+// Throws InputError (with context as the message prefix) for fewer than 3 points, non-finite points or
+// target, zero area, a self-intersecting or self-touching boundary, or an estimated triangle count above
+// 5 million (too small a target).
 PanelMesh meshPanel(const std::vector<Eigen::Vector2d>& boundary, double targetEdgeLength,
                     const std::string& context);
 

@@ -48,6 +48,8 @@ struct Stitch {
   StitchSide b;
   // false (the default): a's start meets b's end, as when two panels are sewn face to face;
   // true ("right_wrong" in the file): a's start meets b's start.
+  // Checked on the shared GarmentCode files: with the default, paired placed points of every stitch longer than
+  // 3 cm differ by a near-rigid translation; the reversed pairing does not. (No file there uses right_wrong.)
   bool rightWrong = false;
 };
 
