@@ -32,7 +32,7 @@ std::string usageText() {
   return R"(Usage:
   drape [SCENE.json]                      open the desktop application (default scene if none given)
   drape --info FILE [scene options]       describe a pattern, scene or avatar file
-  drape --simulate SCENE -o OUT.(obj|glb|ply|stl) [--solver none] [--stats STATS.json] [--max-sim-time S]
+  drape --simulate SCENE -o OUT.(obj|glb|ply|stl) [--solver none|drape] [--stats STATS.json] [--max-sim-time S]
                                           build the garment, run the solver, write the garment
   drape --render SCENE -o OUT.png [--view front|back|left|right|three-quarter|all] [--size WxH]
                                           [--mode shaded|wireframe|strain|domains|contacts] [--simulate none]
@@ -48,7 +48,8 @@ Scene options (every headless mode):
   --fabric PRESET          fabric of every panel (see --list-fabrics)
   --set KEY=VALUE          override any setting by its dotted name (repeatable; see --list-settings)
 
-Solvers: --solver none writes the placed garment; the preview and drape solvers are not available yet.
+Solvers: --solver drape (the default, or the scene's solver.stage) runs the Backward-Euler Newton drape until the
+garment is at rest or solver.max_sim_time; --solver none writes the placed garment. The preview is not available yet.
 Exit status: 0 on success, 1 on bad input or failure (one line on stderr names the file and the problem).
 )";
 }
@@ -100,6 +101,7 @@ CliOptions parseCommandLine(int argc, char** argv) {
       requireOneOf(a, o.solver, {"none", "preview", "drape", "full"});
     } else if (a == "--view") {
       o.view = value(i, a);
+      o.viewGiven = true;
       requireOneOf(a, o.view, {"front", "back", "left", "right", "three-quarter", "all"});
     } else if (a == "--mode") {
       o.renderMode = value(i, a);

@@ -15,9 +15,10 @@ struct CliOptions {
   SceneRequest scene;   // input file, --avatar, --avatar-units, --fabric, --set
   std::string output;   // -o
   std::string stats;    // --stats
-  std::string solver = "none";        // --solver none|preview|drape|full
-  std::string simulateStage = "none";  // --simulate value in --render mode
+  std::string solver;                 // --solver none|preview|drape|full (empty: the scene's solver.stage)
+  std::string simulateStage = "none";  // --simulate value in --render mode (renders the placed garment by default)
   std::string view = "three-quarter";  // --view
+  bool viewGiven = false;              // --view was on the command line
   std::string renderMode = "shaded";   // --mode
   int width = 1024, height = 768;      // --size WxH
   double maxSimTime = -1.0;            // --max-sim-time

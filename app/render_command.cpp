@@ -1,13 +1,73 @@
-// drape --render SCENE -o OUT.png: filled in when the renderer lands (issue 3).
+// drape --render SCENE -o OUT.png: headless rendering through EGL (OSMesa fallback); no QApplication.
 #include <ostream>
 
 #include "commands.h"
 #include "drape/core/input_error.h"
+#include "drape/garment/garment_builder.h"
+#include "drape/render/headless.h"
+#include "drape/render/png_io.h"
+#include "drape/scene/pins.h"
+#include "drape/sim/simulation.h"
+#include "drape/sim/snapshot_builder.h"
+#include "scene_request.h"
 
 namespace drape::app {
+namespace {
+
+// Runs the scene's stage (none: the placed garment) and returns what to draw.
+Snapshot stageSnapshot(Scene scene, std::ostream& out) {
+  if (scene.settings.text("solver.stage") == "none") {
+    const Garment garment = buildGarment(scene.pattern, {scene.settings.number("mesh.target_edge_length")});
+    resolvePins(scene, garment);  // validates the pins
+    return makeSnapshot(scene, garment, garment.positions);
+  }
+  Simulation simulation(std::move(scene));
+  StepReport last;
+  while (!simulation.finished()) {
+    last = simulation.step();
+    if (last.status == StepStatus::Diverged || last.status == StepStatus::Cancelled) break;
+  }
+  out << "render: simulated " << simulation.time() << " s in " << simulation.steps() << " steps ("
+      << toString(last.status) << (last.atRest ? ", at rest" : "") << ")\n";
+  return simulation.snapshot();
+}
+
+}  // namespace
 
 int runRender(const CliOptions& options, std::ostream& out) {
-  throw InputError("--render: the renderer is not available yet");
+  const std::filesystem::path output = options.output;
+  if (output.extension() != ".png") throw InputError(output.string() + ": the output of --render must be a .png file");
+  Scene scene = loadScene(requestWithStage(options));
+  const std::string cameraView = scene.settings.text("camera.view");
+  const double fov = scene.settings.number("camera.fov_deg");
+  const Snapshot snapshot = stageSnapshot(std::move(scene), out);
+
+  render::RenderOptions ro;
+  ro.mode = *render::parseDisplayMode(options.renderMode);
+  ro.width = options.width;
+  ro.height = options.height;
+  render::Image image;
+  try {
+    render::OffscreenRenderer renderer;
+    if (options.view == "all") {
+      image = renderer.contactSheet(snapshot, ro);
+    } else {
+      // --view given on the command line wins; otherwise the scene's camera.view.
+      const std::string view = options.viewGiven ? options.view : cameraView;
+      const render::ViewPreset preset = *render::parseViewPreset(view);
+      const render::Camera camera =
+          render::presetCamera(preset, snapshot.bounds(), double(ro.width) / ro.height, fov);
+      image = renderer.render(snapshot, camera, ro);
+    }
+    out << "render: " << renderer.backendName() << " (" << renderer.glRendererName() << ")\n";
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    throw InputError(std::string("--render: ") + e.what());
+  }
+  render::writePng(output, image);
+  out << "wrote " << output.string() << " (" << image.width << "x" << image.height << ")\n";
+  return 0;
 }
 
 }  // namespace drape::app

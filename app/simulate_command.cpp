@@ -1,5 +1,6 @@
-// drape --simulate SCENE -o OUT: build the garment, run the chosen solver stage, write the result.
+// drape --simulate SCENE -o OUT: build the garment, run the chosen solver stage, write the result and statistics.
 #include <chrono>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <ostream>
 
@@ -9,35 +10,90 @@
 #include "drape/io/atomic_file.h"
 #include "drape/io/mesh_export.h"
 #include "drape/scene/pins.h"
+#include "drape/sim/simulation.h"
+#include "scene_request.h"
 
 namespace drape::app {
+namespace {
+
+nlohmann::json stepRecord(const StepReport& r) {
+  return {{"time", r.time},         {"h", r.h},
+          {"status", toString(r.status)}, {"newton_iterations", r.iterations},
+          {"cg_iterations", r.cgIterations}, {"splits", r.splits},
+          {"residual", r.residual}, {"kinetic_energy_p99", r.kineticEnergy},
+          {"contacts", r.contacts}, {"max_strain", r.maxStrain},
+          {"wall_time_s", r.wallTime}};
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
 
 int runSimulate(const CliOptions& options, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
-  if (options.solver != "none")
-    throw InputError("--solver " + options.solver + ": not available yet (only 'none', the placed garment)");
-  const Scene scene = loadScene(options.scene);
-  Diagnostics diagnostics;
-  const Garment garment =
-      buildGarment(scene.pattern, MeshingOptions{scene.settings.number("mesh.target_edge_length")}, &diagnostics);
-  const auto pinned = resolvePins(scene, garment);
-  exportGarment(garment, garment.positions, options.output);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  out << "wrote " << options.output << " (" << garment.vertexCount() << " vertices, " << garment.triangleCount()
-      << " triangles, placed garment) in " << wall << " s\n";
-  if (!options.stats.empty()) {
-    nlohmann::json stats = {{"status", "Placed"},      {"solver", options.solver},
-                            {"wall_time_s", wall},     {"sim_time_s", 0.0},
-                            {"steps", 0},              {"terms", nlohmann::json::array()},
-                            {"per_step", nlohmann::json::array()},
-                            {"vertices", garment.vertexCount()}, {"triangles", garment.triangleCount()},
-                            {"pinned_vertices", pinned.size()}};
-    auto warnings = scene.diagnostics.warnings();
+  Scene scene = loadScene(requestWithStage(options));
+  const std::string stage = scene.settings.text("solver.stage");
+  nlohmann::json stats;
+  auto warnings = scene.diagnostics.warnings();
+
+  if (stage == "none") {
+    Diagnostics diagnostics;
+    const Garment garment =
+        buildGarment(scene.pattern, MeshingOptions{scene.settings.number("mesh.target_edge_length")}, &diagnostics);
+    const auto pinned = resolvePins(scene, garment);
+    exportGarment(garment, garment.positions, options.output);
     warnings.insert(warnings.end(), diagnostics.warnings().begin(), diagnostics.warnings().end());
-    stats["warnings"] = warnings;
-    writeFileAtomically(options.stats, stats.dump(2) + "\n");
+    stats = {{"status", "Placed"}, {"steps", 0}, {"sim_time_s", 0.0}, {"terms", nlohmann::json::array()},
+             {"per_step", nlohmann::json::array()}, {"vertices", garment.vertexCount()},
+             {"triangles", garment.triangleCount()}, {"pinned_vertices", pinned.size()}};
+    out << "wrote " << options.output << " (" << garment.vertexCount() << " vertices, " << garment.triangleCount()
+        << " triangles, placed garment)\n";
+  } else {
+    Simulation simulation(std::move(scene));
+    const auto terms = simulation.terms();
+    out << "drape: " << simulation.garment().vertexCount() << " vertices, " << simulation.garment().triangleCount()
+        << " triangles; terms:";
+    for (const auto& t : terms) out << " " << t;
+    out << "\n";
+    nlohmann::json perStep = nlohmann::json::array();
+    std::string status = "MaxSimTime";
+    double nextPrint = 0.0;
+    StepReport last;
+    while (!simulation.finished()) {
+      last = simulation.step();
+      perStep.push_back(stepRecord(last));
+      if (last.status == StepStatus::Diverged || last.status == StepStatus::Cancelled) {
+        status = toString(last.status);
+        break;
+      }
+      if (last.atRest) status = "AtRest";
+      if (last.time >= nextPrint) {
+        char line[200];
+        std::snprintf(line, sizeof line, "  t=%.3f s  h=%.2e  newton=%d  cg=%d  residual=%.2e  KE99=%.2e  contacts=%d\n",
+                      last.time, last.h, last.iterations, last.cgIterations, last.residual, last.kineticEnergy,
+                      last.contacts);
+        out << line << std::flush;
+        nextPrint = last.time + 0.1;
+      }
+    }
+    exportGarment(simulation.garment(), simulation.positions(), options.output);
+    stats = {{"status", status}, {"steps", simulation.steps()}, {"sim_time_s", simulation.time()}, {"terms", terms},
+             {"per_step", perStep}, {"vertices", simulation.garment().vertexCount()},
+             {"triangles", simulation.garment().triangleCount()}, {"pinned_vertices", simulation.pinned().size()},
+             {"final", stepRecord(last)}};
+    out << "drape: " << status << " after " << simulation.steps() << " steps, " << simulation.time()
+        << " s simulated; wrote " << options.output << "\n";
+    if (status == "Diverged")
+      out << "drape: the solver diverged at t=" << last.time << " s; the last good state was written\n";
   }
-  return 0;
+  const double wall = secondsSince(start);
+  stats["wall_time_s"] = wall;
+  stats["solver"] = stage;
+  stats["warnings"] = warnings;
+  if (!options.stats.empty()) writeFileAtomically(options.stats, stats.dump(2) + "\n");
+  return stats["status"] == "Diverged" ? 3 : 0;
 }
 
 }  // namespace drape::app

@@ -1,0 +1,27 @@
+#include "scene_request.h"
+
+#include <sstream>
+
+#include "drape/core/input_error.h"
+
+namespace drape::app {
+
+SceneRequest requestWithStage(const CliOptions& options) {
+  SceneRequest request = options.scene;
+  const std::string& stage = options.mode == Mode::Render ? options.simulateStage : options.solver;
+  if (!stage.empty()) {
+    if (stage == "preview" || stage == "full")
+      throw InputError("--" + std::string(options.mode == Mode::Render ? "simulate" : "solver") + " " + stage +
+                       ": the preview solver is not available yet (use none or drape)");
+    request.overrides.insert(request.overrides.begin(), {"solver.stage", stage});
+  }
+  if (options.maxSimTime > 0) {
+    std::ostringstream os;
+    os.precision(17);
+    os << options.maxSimTime;
+    request.overrides.emplace_back("solver.max_sim_time", os.str());
+  }
+  return request;
+}
+
+}  // namespace drape::app

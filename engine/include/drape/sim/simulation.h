@@ -1,0 +1,70 @@
+#pragma once
+// The one step API for the GUI and the CLI (STYLE.md): a Simulation owns a scene's garment and solver, advances
+// one step at a time, and hands out owned snapshots. Nothing here knows whether a window exists.
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "drape/garment/garment.h"
+#include "drape/scene/scene.h"
+#include "drape/sim/snapshot.h"
+
+namespace drape {
+
+enum class StepStatus { Converged, MaxIterations, Diverged, Cancelled };
+const char* toString(StepStatus status);
+
+struct StepReport {
+  StepStatus status = StepStatus::Converged;
+  std::string stage;           // "drape"
+  double time = 0.0;           // simulated seconds after the step
+  double h = 0.0;              // step taken, s
+  int iterations = 0;          // Newton iterations
+  int cgIterations = 0;
+  int splits = 0;              // time-split retries
+  double residual = 0.0;
+  double kineticEnergy = 0.0;  // 99th percentile of per-vertex kinetic energy, J
+  int contacts = 0;            // garment vertices in contact with a collider
+  double maxStrain = 0.0;      // largest triangle stretch (0.05 = 5%)
+  double wallTime = 0.0;       // seconds spent in this step
+  bool atRest = false;         // early stop reached
+};
+
+class Simulation {
+ public:
+  // Builds the garment, pins and the solver terms the scene needs; throws InputError for bad scenes.
+  explicit Simulation(Scene scene);
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  // Advances one step; never touches UI, never throws for numerical trouble (a Diverged step keeps the last
+  // good state).
+  StepReport step();
+  // True when the garment is at rest (early stop) or the scene's time/step limit is reached.
+  bool finished() const;
+  Snapshot snapshot() const;
+  void requestCancel();
+
+  const Scene& scene() const { return m_scene; }
+  const Garment& garment() const { return m_garment; }
+  const std::vector<int>& pinned() const { return m_pinned; }
+  // Names of the energies the solver uses ("membrane", "bending", "avatar_contact", ...).
+  std::vector<std::string> terms() const;
+  Eigen::MatrixX3d positions() const;  // |V| x 3, metres
+  double time() const;
+  int steps() const { return m_steps; }
+
+ private:
+  struct Solver;
+  Scene m_scene;
+  Garment m_garment;
+  std::vector<int> m_pinned;
+  TriangleMesh m_colliderMesh;  // avatar and generated colliders, merged
+  std::unique_ptr<Solver> m_solver;
+  int m_steps = 0;
+  bool m_atRest = false;
+};
+
+}  // namespace drape

@@ -1,0 +1,85 @@
+#include "sim/cloth_model_builder.h"
+
+#include <algorithm>
+
+namespace drape {
+namespace {
+
+newton::TriangleFabric toTriangleFabric(const Fabric& f) {
+  newton::TriangleFabric t;
+  t.stretchWarp = f.stretchWarp;
+  t.stretchWeft = f.stretchWeft;
+  t.shear = f.shear;
+  t.bendWarp = f.bendWarp;
+  t.bendWeft = f.bendWeft;
+  t.density = f.density;
+  return t;
+}
+
+}  // namespace
+
+newton::ClothModel buildClothModel(const Scene& scene, const Garment& garment, const std::vector<int>& pinned) {
+  newton::ClothModel model;
+  model.restCoords = garment.rest;
+  model.triangles = garment.triangles;
+  // One fabric entry per panel, expanded per triangle only when panels differ.
+  std::vector<newton::TriangleFabric> perPanel;
+  bool uniform = true;
+  for (const auto& name : garment.panelNames) {
+    perPanel.push_back(toTriangleFabric(scene.fabricOfPanel(name)));
+    uniform = uniform && scene.panelFabrics.count(name) == 0;
+  }
+  if (uniform) {
+    model.fabrics = {toTriangleFabric(scene.fabric)};
+  } else {
+    model.fabrics.resize(garment.triangleCount());
+    for (int t = 0; t < garment.triangleCount(); ++t) model.fabrics[t] = perPanel[garment.trianglePanel[t]];
+  }
+  model.positions.resize(3 * garment.vertexCount());
+  for (int v = 0; v < garment.vertexCount(); ++v) model.positions.segment<3>(3 * v) = garment.positions.row(v);
+  model.stitches = garment.stitchPairs;
+  model.pinned = pinned;
+  model.gravity = Eigen::Vector3d(0.0, scene.settings.number("sim.gravity"), 0.0);
+  return model;
+}
+
+newton::NewtonSettings newtonSettingsFrom(const Settings& s) {
+  newton::NewtonSettings n;
+  n.tauNewton = s.number("solver.newton.tolerance");
+  n.maxNewtonIterations = s.integer("solver.newton.max_iterations");
+  n.maxLineSearchIterations = s.integer("solver.newton.line_search_iterations");
+  n.hMax = s.number("solver.newton.h_max");
+  n.omega = s.number("solver.newton.omega");
+  n.growAfterSteps = s.integer("solver.newton.grow_after_steps");
+  n.relaxation = s.flag("solver.newton.relaxation");
+  n.earlyStopThreshold = s.number("solver.newton.early_stop_threshold");
+  n.earlyStopWindow = s.number("solver.newton.early_stop_window");
+  n.linear.tolerance = s.number("solver.cg.tolerance");
+  n.linear.maxIterations = s.integer("solver.cg.max_iterations");
+  n.linear.mixedPrecision = s.flag("solver.cg.mixed_precision");
+  const std::string& pre = s.text("solver.cg.preconditioner");
+  if (pre == "cholmod_direct") {
+    n.linear.kind = newton::LinearSolverKind::Cholmod;
+  } else {
+    n.linear.kind = newton::LinearSolverKind::Pcg;
+    n.linear.preconditioner = pre == "none"                  ? newton::Preconditioner::None
+                              : pre == "diagonal"            ? newton::Preconditioner::Diagonal
+                              : pre == "incomplete_cholesky" ? newton::Preconditioner::IncompleteCholesky
+                                                             : newton::Preconditioner::BlockJacobi;
+  }
+  n.alpha = s.number("solver.damping.air");
+  n.betaStretch = s.number("solver.damping.stretch");
+  n.betaBend = s.number("solver.damping.bend");
+  n.stitchStiffness = s.number("solver.stitch_stiffness");
+  n.pinStiffness = s.number("solver.pin_stiffness");
+  return n;
+}
+
+double contactThickness(const Scene& scene) {
+  if (scene.settings.has("contact.thickness")) return scene.settings.number("contact.thickness");
+  double t = scene.fabric.thickness;
+  for (const auto& [panel, fabric] : scene.panelFabrics) t = std::max(t, fabric.thickness);
+  return std::max(t, 2e-3);
+}
+
+}  // namespace drape

@@ -1,0 +1,48 @@
+#include "sim/contact_terms.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+
+#include "drape/collision/contact_factory.h"
+#include "sim/cloth_model_builder.h"
+
+namespace drape {
+
+ContactTerms makeContactTerms(const Scene& scene, const Garment& garment, const TriangleMesh& colliderMesh) {
+  ContactTerms terms;
+  terms.thickness = contactThickness(scene);
+  if (colliderMesh.triangleCount() > 0)
+    terms.collider = std::make_shared<const collision::AvatarCollider>(colliderMesh);
+  collision::ContactSetup setup;
+  setup.avatar = terms.collider;
+  setup.avatarContact.stiffness = scene.settings.number("contact.stiffness");
+  setup.avatarContact.thickness = terms.thickness;
+  setup.selfCollision = scene.settings.flag("contact.self_collision");
+  setup.selfContact = setup.avatarContact;
+  // Friction only where there is something to rub against and a non-zero coefficient.
+  if (scene.settings.flag("contact.friction") && (setup.avatar || setup.selfCollision)) {
+    double mu = scene.fabric.friction;
+    for (const auto& [panel, fabric] : scene.panelFabrics) mu = std::max(mu, fabric.friction);
+    setup.frictionCoefficient = mu;
+  }
+  terms.energies = collision::makeContactEnergies(setup, garment.vertexCount(), garment.triangles, garment.stitchPairs);
+  return terms;
+}
+
+Eigen::VectorXi contactMask(const ContactTerms& terms, const Eigen::VectorXd& x) {
+  const int n = static_cast<int>(x.size() / 3);
+  Eigen::VectorXi mask = Eigen::VectorXi::Zero(n);
+  if (!terms.collider) return mask;
+  tbb::parallel_for(0, n, [&](int v) {
+    collision::SurfacePoint sp;
+    if (terms.collider->closest(x.segment<3>(3 * v), sp, 1.5 * terms.thickness) &&
+        sp.signedDistance < 1.5 * terms.thickness)
+      mask[v] = 1;
+  });
+  return mask;
+}
+
+int countContacts(const ContactTerms& terms, const Eigen::VectorXd& x) { return contactMask(terms, x).sum(); }
+
+}  // namespace drape

@@ -1,0 +1,27 @@
+#pragma once
+// The contact part of a scene's solver: the merged collider (avatar + generated primitives) and the contact
+// energies the scene needs (none without colliders; no friction term when friction is off or zero; no
+// cloth-cloth term unless self-collision is on). Private to the engine.
+#include <memory>
+#include <vector>
+
+#include "drape/collision/avatar_collider.h"
+#include "drape/garment/garment.h"
+#include "drape/newton/energy.h"
+#include "drape/scene/scene.h"
+
+namespace drape {
+
+struct ContactTerms {
+  std::shared_ptr<const collision::AvatarCollider> collider;  // null when the scene has no collider
+  double thickness = 0.0;                                     // metres
+  std::vector<std::unique_ptr<newton::Energy>> energies;      // handed over to the solver
+};
+
+ContactTerms makeContactTerms(const Scene& scene, const Garment& garment, const TriangleMesh& colliderMesh);
+
+// |V| mask, 1 where the garment vertex (x flat, 3|V|) is within the contact thickness of a collider.
+Eigen::VectorXi contactMask(const ContactTerms& terms, const Eigen::VectorXd& x);
+int countContacts(const ContactTerms& terms, const Eigen::VectorXd& x);
+
+}  // namespace drape
