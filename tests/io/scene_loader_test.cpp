@@ -132,7 +132,8 @@ TEST(SceneLoader, RealScenesOnMeanAllLoad) {
                            "gpg_tee_on_mean_all.json", "gpg_skirt_2_panels_on_mean_all.json"}) {
     const Scene scene = load(testDataDir() / "scenes" / name);
     EXPECT_TRUE(scene.hasAvatar()) << name;
-    EXPECT_EQ(scene.avatar.vertexCount(), 23752) << name;
+    // 23,752 in the file; assimp rebuilds vertices by position and merges the two coincident lip vertices.
+    EXPECT_EQ(scene.avatar.vertexCount(), 23751) << name;
     EXPECT_GT(scene.pattern.panels.size(), 1u) << name;
   }
 }
