@@ -1,0 +1,36 @@
+#pragma once
+// Private: checks of a parsed pattern that need its geometry: simple (non-self-intersecting) panel outlines
+// with area, and stitched edges of similar length (a warning otherwise).
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "drape/core/diagnostics.h"
+#include "drape/pattern/pattern.h"
+#include "pattern/json_fields.h"
+
+namespace drape::detail {
+
+// Where a closed polyline first touches or crosses itself: the two segments (indices into the polyline, segment
+// k runs from point k to point k + 1 mod n) and a point near the contact.
+struct OutlineContact {
+  int segmentA = 0;
+  int segmentB = 0;
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();
+};
+
+// Finds a contact between two non-adjacent segments of the closed polyline (or two adjacent segments that fold
+// back onto each other), or nothing when the polyline is simple. O(n log n + candidates).
+std::optional<OutlineContact> findSelfContact(const std::vector<Eigen::Vector2d>& outline);
+
+// Signed area of a closed polyline (> 0 counter-clockwise), squared file units.
+double signedArea(const std::vector<Eigen::Vector2d>& outline);
+
+// Throws InputError naming the panel and edges when the panel outline crosses itself or encloses no area.
+void validatePanelOutline(const Panel& panel, const JsonFields& fields);
+
+// Adds a warning to diagnostics for every stitch whose two edges differ in length by more than 5%.
+void warnStitchLengthMismatch(const Pattern& pattern, Diagnostics& diagnostics);
+
+}  // namespace drape::detail
