@@ -1,0 +1,30 @@
+#version 330 core
+// Garment and avatar: world-space position and normal, plus per-corner display attributes.
+layout(location = 0) in vec3 a_position;   // metres
+layout(location = 1) in vec3 a_normal;     // smooth vertex normal
+layout(location = 2) in vec3 a_bary;       // barycentric corner (1,0,0), (0,1,0), (0,0,1) for edge drawing
+layout(location = 3) in vec3 a_panelColor; // linear RGB
+layout(location = 4) in vec3 a_domainColor;// linear RGB
+layout(location = 5) in float a_strain;    // stretch fraction, or a large negative value when absent
+layout(location = 6) in float a_contact;   // 1 in contact, 0 otherwise
+
+uniform mat4 u_viewProjection;
+
+out vec3 v_worldPos;
+out vec3 v_normal;
+out vec3 v_bary;
+out vec3 v_panelColor;
+out vec3 v_domainColor;
+flat out float v_strain;
+out float v_contact;
+
+void main() {
+  v_worldPos = a_position;
+  v_normal = a_normal;
+  v_bary = a_bary;
+  v_panelColor = a_panelColor;
+  v_domainColor = a_domainColor;
+  v_strain = a_strain;
+  v_contact = a_contact;
+  gl_Position = u_viewProjection * vec4(a_position, 1.0);
+}

@@ -1,0 +1,23 @@
+#include "drape/render/render_options.h"
+
+namespace drape::render {
+
+std::string_view displayModeName(DisplayMode mode) {
+  switch (mode) {
+    case DisplayMode::Shaded: return "shaded";
+    case DisplayMode::Wireframe: return "wireframe";
+    case DisplayMode::Strain: return "strain";
+    case DisplayMode::Domains: return "domains";
+    case DisplayMode::Contacts: return "contacts";
+  }
+  return "shaded";
+}
+
+std::optional<DisplayMode> parseDisplayMode(std::string_view name) {
+  for (DisplayMode m : {DisplayMode::Shaded, DisplayMode::Wireframe, DisplayMode::Strain, DisplayMode::Domains,
+                        DisplayMode::Contacts})
+    if (displayModeName(m) == name) return m;
+  return std::nullopt;
+}
+
+}  // namespace drape::render
