@@ -11,7 +11,7 @@ namespace drape {
 namespace {
 
 // Sections whose leaves are settings ("mesh": {"target_edge_length": 0.02} -> mesh.target_edge_length).
-const char* kSettingSections[] = {"avatar", "fabric", "mesh", "sim", "solver", "camera", "render"};
+const char* kSettingSections[] = {"avatar", "fabric", "mesh", "sim", "solver", "contact", "camera", "render"};
 // Top-level keys with their own structure.
 const char* kStructuredKeys[] = {"pattern", "colliders", "pins", "panel_fabrics", "name", "description"};
 
