@@ -1,0 +1,48 @@
+#pragma once
+// Static avatar collider: a closed, outward-oriented triangle mesh with an LBVH, answering closest-point and
+// signed-distance queries. The sign comes from the angle-weighted pseudo-normal of the closest feature (face,
+// edge or vertex; Baerentzen and Aanaes 2005), which is exact for a closed, consistently oriented mesh.
+#include <Eigen/Core>
+#include <limits>
+#include <vector>
+
+#include "drape/collision/bvh.h"
+#include "drape/collision/distance.h"
+#include "drape/geometry/triangle_mesh.h"
+
+namespace drape::collision {
+
+struct SurfacePoint {
+  double signedDistance = 0.0;                        // metres, negative inside the avatar
+  Eigen::Vector3d closest = Eigen::Vector3d::Zero();  // closest point on the surface
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();   // unit outward direction: gradient of the signed distance
+  int triangle = -1;
+  TriangleRegion region = TriangleRegion::Face;
+};
+
+class AvatarCollider {
+ public:
+  // mesh: closed, counter-clockwise seen from outside (drape::isClosedManifold); metres. Builds the BVH and the
+  // face, edge and vertex pseudo-normals. An open mesh still works but its sign is unreliable near the holes.
+  explicit AvatarCollider(TriangleMesh mesh);
+
+  // Closest surface point to p among those with unsigned distance < maxDistance (metres); false when none.
+  bool closest(const Eigen::Vector3d& p, SurfacePoint& out,
+               double maxDistance = std::numeric_limits<double>::infinity()) const;
+  // Signed distance of p (metres): negative inside. Unbounded query.
+  double signedDistance(const Eigen::Vector3d& p) const;
+
+  const TriangleMesh& mesh() const { return m_mesh; }
+  const Bvh& tree() const { return m_tree; }
+
+ private:
+  Eigen::Vector3d pseudoNormal(int triangle, TriangleRegion region) const;
+
+  TriangleMesh m_mesh;
+  Bvh m_tree;
+  std::vector<Eigen::Vector3d> m_faceNormals;    // |F|, unit
+  std::vector<Eigen::Vector3d> m_vertexNormals;  // |V|, angle-weighted, unit
+  std::vector<Eigen::Vector3d> m_edgeNormals;    // 3|F|: edge k of face f (AB, BC, CA) at 3f + k, unit
+};
+
+}  // namespace drape::collision

@@ -1,0 +1,70 @@
+#pragma once
+// Garment-avatar contact for the Newton drape (newton-drape-pizana 3.2: quadratic penalty, stiffness k):
+//   E(x) = sum_v 0.5 k (thickness - d_v(x))^2  over vertices with signed distance d_v(x) < thickness.
+// The contact set is recomputed from x on every evaluation, so E is one fixed function of x and the line search
+// compares like with like. This stays cheap because the signed distance is 1-Lipschitz: beginStep stores each
+// vertex's signed distance d0 at the step start, and a vertex that moved by less than d0 - thickness since then
+// provably has no contact and is skipped without a query. Queries are bounded by searchRadius: the energy is
+// that of vertices with -searchRadius < d < thickness. Results for the last x are cached so that value,
+// gradient and Hessian at the same x share one set of queries.
+#include <Eigen/Core>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "drape/collision/avatar_collider.h"
+#include "drape/collision/contact_stencil.h"
+#include "drape/newton/energy.h"
+
+namespace drape::collision {
+
+struct ContactParameters {
+  double stiffness = 1e2;    // k, N/m per contact (paper: 10^2)
+  double thickness = 2e-3;   // contact distance, metres (> 0)
+  bool projectHessian = true;  // drop the indefinite curvature part of the Hessian (keep it SPD)
+  // Avatar contact only: distance queries look no farther than this (metres, > thickness). Vertices deeper
+  // inside the avatar than this are not pushed out (they are lost causes that a penalty would tear through the
+  // body), and far vertices cost almost nothing to query.
+  double searchRadius = 0.05;
+};
+
+class AvatarContactEnergy : public newton::Energy {
+ public:
+  // vertexCount: garment vertices; collider shared with other users (the PD preview, statistics).
+  AvatarContactEnergy(std::shared_ptr<const AvatarCollider> collider, int vertexCount, ContactParameters params);
+
+  std::string_view name() const override { return "avatar_contact"; }
+  void beginStep(const newton::StepContext& ctx) override;
+  double value(const Eigen::VectorXd& x) const override;
+  void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
+  void addHessian(const Eigen::VectorXd& x, newton::BlockMatrix& h) const override;
+
+  // Vertices with signed distance < thickness at x: one-vertex stencils (weight 1), distance signed, normal the
+  // outward gradient of the signed distance. Used by friction for its normal forces.
+  const std::vector<ContactStencil>& contacts(const Eigen::VectorXd& x) const;
+  // Vertices whose contact query could not be skipped in the last evaluation (for statistics).
+  int lastQueryCount() const { return m_lastQueries; }
+  const ContactParameters& parameters() const { return m_params; }
+  const AvatarCollider& collider() const { return *m_collider; }
+
+ private:
+  struct Active {
+    ContactStencil stencil;
+    double curvature = 0.0;  // Hessian of the signed distance = curvature * (P - n n^T), P below
+    Eigen::Matrix3d complement = Eigen::Matrix3d::Zero();  // projector off the closest feature's span
+  };
+  void update(const Eigen::VectorXd& x) const;
+
+  std::shared_ptr<const AvatarCollider> m_collider;
+  int m_vertexCount = 0;
+  ContactParameters m_params;
+  Eigen::VectorXd m_startPositions;      // x at the last beginStep (empty before the first)
+  std::vector<double> m_startDistance;   // signed distance at m_startPositions per vertex
+  mutable std::mutex m_mutex;
+  mutable Eigen::VectorXd m_cachedX;
+  mutable std::vector<Active> m_active;
+  mutable std::vector<ContactStencil> m_stencils;
+  mutable int m_lastQueries = 0;
+};
+
+}  // namespace drape::collision

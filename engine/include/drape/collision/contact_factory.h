@@ -1,0 +1,33 @@
+#pragma once
+// Builds only the contact terms a scene needs (DESIGN.md section 1): no avatar -> no avatar contact and no
+// collider; self-collision off -> no cloth-cloth BVH; friction coefficient 0 -> no friction energy. The energies
+// come back in the order the solver should call beginStep in, named "avatar_contact", "self_contact", "friction".
+#include <Eigen/Core>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "drape/collision/avatar_collider.h"
+#include "drape/collision/avatar_contact.h"
+#include "drape/collision/friction.h"
+#include "drape/newton/energy.h"
+
+namespace drape::collision {
+
+struct ContactSetup {
+  std::shared_ptr<const AvatarCollider> avatar;  // null: the scene has no avatar
+  ContactParameters avatarContact;
+  bool selfCollision = false;
+  ContactParameters selfContact;
+  double selfMargin = 0.0;        // extra BVH search radius beyond the thickness, metres (0: = thickness)
+  double frictionCoefficient = 0.0;  // mu; 0 creates no friction energy
+  double frictionEpsV = 1e-3;        // m/s, see FrictionParameters
+};
+
+// Garment: vertexCount vertices, triangles |F| x 3, stitched vertex pairs (never repel each other).
+// The friction energy, when created, points at the contact energies in the same list: keep the list together.
+std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(const ContactSetup& setup, int vertexCount,
+                                                                 const Eigen::MatrixX3i& triangles,
+                                                                 const std::vector<std::pair<int, int>>& stitches);
+
+}  // namespace drape::collision

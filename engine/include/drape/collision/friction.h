@@ -1,0 +1,61 @@
+#pragma once
+// Lagged Coulomb friction as a smooth dissipative potential (IPC, Li et al. 2020, section 5; used with the
+// penalty contacts of newton-drape-pizana 3.2). At the start of each step the active contacts of the contact
+// energies are taken at x_n with their normal force lambda = k (thickness - d), normal n and stencil weights w;
+// these stay fixed for the step. With the tangential relative displacement u = (I - n n^T) sum_i w_i (x_i - x_n,i)
+//   D(x) = sum_c mu lambda_c f0(|u_c|),  f0' = f1,  f1(y) = 2y/eps - y^2/eps^2 (y < eps), 1 otherwise,
+// eps = epsV * h: static friction below a slip of epsV * h, kinetic (force mu lambda) above. D is C1 and its
+// Hessian sum_c mu lambda_c w_i w_j [f1(y)/y I + (f1'(y) y - f1(y))/y^3 u u^T] restricted to the tangent plane
+// is positive semi-definite for every y (no projection needed).
+#include <Eigen/Core>
+#include <vector>
+
+#include "drape/collision/avatar_contact.h"
+#include "drape/collision/contact_stencil.h"
+#include "drape/collision/self_contact.h"
+#include "drape/newton/energy.h"
+
+namespace drape::collision {
+
+struct FrictionParameters {
+  double mu = 0.3;       // Coulomb coefficient (> 0; a coefficient of 0 creates no friction energy at all)
+  double epsV = 1e-3;    // slip velocity below which friction acts as a stiff static spring, m/s
+};
+
+// Smoothed friction magnitude profile f1 and its primitive f0 (f0(0) = eps / 3, f0(y) = y for y >= eps).
+double frictionF0(double y, double eps);
+double frictionF1(double y, double eps);
+
+class FrictionEnergy : public newton::Energy {
+ public:
+  // Either source may be null; they must outlive this energy (the factory keeps them in the same list).
+  FrictionEnergy(const AvatarContactEnergy* avatar, const SelfContactEnergy* self, FrictionParameters params);
+
+  std::string_view name() const override { return "friction"; }
+  void beginStep(const newton::StepContext& ctx) override;
+  double value(const Eigen::VectorXd& x) const override;
+  void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
+  void addHessian(const Eigen::VectorXd& x, newton::BlockMatrix& h) const override;
+
+  // Lagged contacts of the current step and their normal forces (N).
+  struct LaggedContact {
+    ContactStencil stencil;
+    double normalForce = 0.0;
+    Eigen::Matrix3d tangent = Eigen::Matrix3d::Zero();  // I - n n^T
+  };
+  const std::vector<LaggedContact>& laggedContacts() const { return m_contacts; }
+  // Sets the lagged contacts directly (tests; custom contact sources). start: x_n; h: time step, s.
+  void setLagged(std::vector<LaggedContact> contacts, const Eigen::VectorXd& start, double h);
+
+ private:
+  Eigen::Vector3d slip(const LaggedContact& c, const Eigen::VectorXd& x) const;
+
+  const AvatarContactEnergy* m_avatar = nullptr;
+  const SelfContactEnergy* m_self = nullptr;
+  FrictionParameters m_params;
+  double m_eps = 1e-6;  // epsV * h, metres
+  Eigen::VectorXd m_start;
+  std::vector<LaggedContact> m_contacts;
+};
+
+}  // namespace drape::collision

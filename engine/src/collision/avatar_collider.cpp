@@ -1,0 +1,112 @@
+// Pseudo-normals: face normal for the face region, the sum of the two incident face normals for an edge, the
+// incident face normals weighted by their corner angles for a vertex. Edges are matched through a sorted list.
+#include "drape/collision/avatar_collider.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+namespace drape::collision {
+namespace {
+
+Eigen::Vector3d safeNormalized(const Eigen::Vector3d& v) {
+  const double n = v.norm();
+  return n > 0.0 ? Eigen::Vector3d(v / n) : Eigen::Vector3d::Zero();
+}
+
+}  // namespace
+
+AvatarCollider::AvatarCollider(TriangleMesh mesh) : m_mesh(std::move(mesh)) {
+  const int faces = m_mesh.triangleCount();
+  const auto& V = m_mesh.vertices;
+  const auto& F = m_mesh.triangles;
+  m_faceNormals.resize(faces);
+  m_vertexNormals.assign(m_mesh.vertexCount(), Eigen::Vector3d::Zero());
+  m_edgeNormals.assign(3 * faces, Eigen::Vector3d::Zero());
+  std::vector<BoundingBox> boxes(faces);
+  for (int f = 0; f < faces; ++f) {
+    const Eigen::Vector3d a = V.row(F(f, 0));
+    const Eigen::Vector3d b = V.row(F(f, 1));
+    const Eigen::Vector3d c = V.row(F(f, 2));
+    m_faceNormals[f] = safeNormalized((b - a).cross(c - a));
+    boxes[f] = boxOf(a, b, c);
+    const Eigen::Vector3d corners[3] = {a, b, c};
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d u = safeNormalized(corners[(k + 1) % 3] - corners[k]);
+      const Eigen::Vector3d w = safeNormalized(corners[(k + 2) % 3] - corners[k]);
+      const double angle = std::acos(std::clamp(u.dot(w), -1.0, 1.0));
+      m_vertexNormals[F(f, k)] += angle * m_faceNormals[f];
+    }
+  }
+  for (auto& n : m_vertexNormals) n = safeNormalized(n);
+
+  // Edge (min, max, face, local edge), sorted so that the two faces of an edge are adjacent in the list.
+  std::vector<std::tuple<int, int, int, int>> halfEdges;
+  halfEdges.reserve(3 * faces);
+  for (int f = 0; f < faces; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = F(f, k);
+      const int b = F(f, (k + 1) % 3);
+      halfEdges.emplace_back(std::min(a, b), std::max(a, b), f, k);
+    }
+  }
+  std::sort(halfEdges.begin(), halfEdges.end());
+  for (std::size_t i = 0; i < halfEdges.size();) {
+    std::size_t j = i;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    while (j < halfEdges.size() && std::get<0>(halfEdges[j]) == std::get<0>(halfEdges[i]) &&
+           std::get<1>(halfEdges[j]) == std::get<1>(halfEdges[i])) {
+      sum += m_faceNormals[std::get<2>(halfEdges[j])];
+      ++j;
+    }
+    const Eigen::Vector3d n = safeNormalized(sum);
+    for (std::size_t k = i; k < j; ++k) m_edgeNormals[3 * std::get<2>(halfEdges[k]) + std::get<3>(halfEdges[k])] = n;
+    i = j;
+  }
+  m_tree.build(boxes);
+}
+
+Eigen::Vector3d AvatarCollider::pseudoNormal(int triangle, TriangleRegion region) const {
+  switch (region) {
+    case TriangleRegion::Face: return m_faceNormals[triangle];
+    case TriangleRegion::EdgeAB: return m_edgeNormals[3 * triangle];
+    case TriangleRegion::EdgeBC: return m_edgeNormals[3 * triangle + 1];
+    case TriangleRegion::EdgeCA: return m_edgeNormals[3 * triangle + 2];
+    case TriangleRegion::VertexA: return m_vertexNormals[m_mesh.triangles(triangle, 0)];
+    case TriangleRegion::VertexB: return m_vertexNormals[m_mesh.triangles(triangle, 1)];
+    case TriangleRegion::VertexC: return m_vertexNormals[m_mesh.triangles(triangle, 2)];
+  }
+  return m_faceNormals[triangle];
+}
+
+bool AvatarCollider::closest(const Eigen::Vector3d& p, SurfacePoint& out, double maxDistance) const {
+  const auto& V = m_mesh.vertices;
+  const auto& F = m_mesh.triangles;
+  auto corner = [&](int f, int k) -> Eigen::Vector3d { return V.row(F(f, k)).transpose(); };
+  double best2 = std::isfinite(maxDistance) ? maxDistance * maxDistance : std::numeric_limits<double>::infinity();
+  const int f = m_tree.nearest(
+      p, [&](int t) { return closestPointTriangle(p, corner(t, 0), corner(t, 1), corner(t, 2)).distanceSquared; },
+      best2);
+  if (f < 0) return false;
+  const PointTriangleResult r = closestPointTriangle(p, corner(f, 0), corner(f, 1), corner(f, 2));
+  const Eigen::Vector3d pn = pseudoNormal(f, r.region);
+  const Eigen::Vector3d offset = p - r.closest;
+  const double distance = std::sqrt(r.distanceSquared);
+  const double sign = offset.dot(pn) < 0.0 ? -1.0 : 1.0;
+  out.signedDistance = sign * distance;
+  out.closest = r.closest;
+  // The gradient of the signed distance is the unit offset times the sign; on the surface use the pseudo-normal.
+  out.normal = distance > 1e-12 ? Eigen::Vector3d(sign * offset / distance) : pn;
+  out.triangle = f;
+  out.region = r.region;
+  return true;
+}
+
+double AvatarCollider::signedDistance(const Eigen::Vector3d& p) const {
+  SurfacePoint s;
+  return closest(p, s) ? s.signedDistance : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace drape::collision

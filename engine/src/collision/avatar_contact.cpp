@@ -1,0 +1,132 @@
+// Per-vertex signed-distance penalty. Hessian of the signed distance d at a vertex whose closest feature spans E
+// (a face, an edge or a point): with P = I - E (E^T E)^-1 E^T and n = grad d,
+//   hess d = (P - n n^T) / d,
+// zero for a face, the edge / point curvature otherwise (d signed: the same formula holds inside).
+#include "drape/collision/avatar_contact.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+namespace drape::collision {
+
+AvatarContactEnergy::AvatarContactEnergy(std::shared_ptr<const AvatarCollider> collider, int vertexCount,
+                                         ContactParameters params)
+    : m_collider(std::move(collider)), m_vertexCount(vertexCount), m_params(params) {}
+
+void AvatarContactEnergy::beginStep(const newton::StepContext& ctx) {
+  std::lock_guard lock(m_mutex);
+  m_startPositions = *ctx.previousPositions;
+  m_startDistance.assign(m_vertexCount, 0.0);
+  const double radius = m_params.searchRadius;
+  tbb::parallel_for(0, m_vertexCount, [&](int v) {
+    // Nothing within the radius: treat as outside by the radius (deeper vertices are ignored, see header).
+    SurfacePoint s;
+    m_startDistance[v] = m_collider->closest(m_startPositions.segment<3>(3 * v), s, radius) ? s.signedDistance : radius;
+  });
+  m_cachedX.resize(0);
+}
+
+void AvatarContactEnergy::update(const Eigen::VectorXd& x) const {
+  if (m_cachedX.size() == x.size() && m_cachedX == x) return;
+  const bool haveStart = m_startPositions.size() == x.size();
+  const double th = m_params.thickness;
+  const TriangleMesh& mesh = m_collider->mesh();
+  tbb::enumerable_thread_specific<std::vector<Active>> local;
+  tbb::enumerable_thread_specific<int> queries(0);
+  tbb::parallel_for(tbb::blocked_range<int>(0, m_vertexCount), [&](const tbb::blocked_range<int>& range) {
+    auto& out = local.local();
+    for (int v = range.begin(); v < range.end(); ++v) {
+      const Eigen::Vector3d p = x.segment<3>(3 * v);
+      double bound = m_params.searchRadius;
+      if (haveStart) {
+        const double moved = (p - m_startPositions.segment<3>(3 * v)).norm();
+        if (m_startDistance[v] - th > moved) continue;  // 1-Lipschitz: d(p) >= d0 - moved > thickness
+        // Strict upper bound on the unsigned distance (1-Lipschitz), capped by the search radius.
+        bound = std::min(bound, (std::abs(m_startDistance[v]) + moved) * (1.0 + 1e-9) + 1e-12);
+      }
+      ++queries.local();
+      SurfacePoint s;
+      if (!m_collider->closest(p, s, bound) || !(s.signedDistance < th)) continue;
+      Active a;
+      a.stencil.vertices[0] = v;
+      a.stencil.weights[0] = 1.0;
+      a.stencil.count = 1;
+      a.stencil.distance = s.signedDistance;
+      a.stencil.normal = s.normal;
+      const auto corner = [&](int k) -> Eigen::Vector3d { return mesh.vertices.row(mesh.triangles(s.triangle, k)); };
+      Eigen::Vector3d edge = Eigen::Vector3d::Zero();
+      switch (s.region) {
+        case TriangleRegion::Face: break;
+        case TriangleRegion::EdgeAB: edge = corner(1) - corner(0); break;
+        case TriangleRegion::EdgeBC: edge = corner(2) - corner(1); break;
+        case TriangleRegion::EdgeCA: edge = corner(0) - corner(2); break;
+        default: a.complement = Eigen::Matrix3d::Identity(); break;
+      }
+      if (edge.squaredNorm() > 0.0) {
+        edge.normalize();
+        a.complement = Eigen::Matrix3d::Identity() - edge * edge.transpose();
+      }
+      if (s.region != TriangleRegion::Face) {
+        // Keep |d| away from zero: the curvature of a point or edge distance blows up on the feature itself.
+        const double dSafe = std::copysign(std::max(std::abs(s.signedDistance), 1e-2 * th), s.signedDistance);
+        a.curvature = 1.0 / dSafe;
+      }
+      out.push_back(a);
+    }
+  });
+  m_active.clear();
+  for (auto& part : local) m_active.insert(m_active.end(), part.begin(), part.end());
+  std::sort(m_active.begin(), m_active.end(),
+            [](const Active& a, const Active& b) { return a.stencil.vertices[0] < b.stencil.vertices[0]; });
+  m_stencils.clear();
+  for (const Active& a : m_active) m_stencils.push_back(a.stencil);
+  m_lastQueries = queries.combine(std::plus<int>());
+  m_cachedX = x;
+}
+
+const std::vector<ContactStencil>& AvatarContactEnergy::contacts(const Eigen::VectorXd& x) const {
+  std::lock_guard lock(m_mutex);
+  update(x);
+  return m_stencils;
+}
+
+double AvatarContactEnergy::value(const Eigen::VectorXd& x) const {
+  std::lock_guard lock(m_mutex);
+  update(x);
+  double e = 0.0;
+  for (const Active& a : m_active) {
+    const double gap = m_params.thickness - a.stencil.distance;
+    e += 0.5 * m_params.stiffness * gap * gap;
+  }
+  return e;
+}
+
+void AvatarContactEnergy::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
+  std::lock_guard lock(m_mutex);
+  update(x);
+  for (const Active& a : m_active) {
+    const double gap = m_params.thickness - a.stencil.distance;
+    g.segment<3>(3 * a.stencil.vertices[0]) -= m_params.stiffness * gap * a.stencil.normal;
+  }
+}
+
+void AvatarContactEnergy::addHessian(const Eigen::VectorXd& x, newton::BlockMatrix& h) const {
+  std::lock_guard lock(m_mutex);
+  update(x);
+  const double k = m_params.stiffness;
+  for (const Active& a : m_active) {
+    const Eigen::Vector3d& n = a.stencil.normal;
+    // hess E = k n n^T + k (d - thickness) hess d.
+    double coefficient = k * (a.stencil.distance - m_params.thickness) * a.curvature;
+    if (m_params.projectHessian) coefficient = std::max(coefficient, 0.0);
+    Eigen::Matrix3d block = k * n * n.transpose();
+    if (coefficient != 0.0) block += coefficient * (a.complement - n * n.transpose());
+    h.addDynamicBlock(a.stencil.vertices[0], a.stencil.vertices[0], block);
+  }
+}
+
+}  // namespace drape::collision

@@ -1,0 +1,31 @@
+// Composition of the contact terms; see contact_factory.h.
+#include "drape/collision/contact_factory.h"
+
+#include "drape/collision/self_contact.h"
+
+namespace drape::collision {
+
+std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(const ContactSetup& setup, int vertexCount,
+                                                                 const Eigen::MatrixX3i& triangles,
+                                                                 const std::vector<std::pair<int, int>>& stitches) {
+  std::vector<std::unique_ptr<newton::Energy>> out;
+  const AvatarContactEnergy* avatar = nullptr;
+  const SelfContactEnergy* self = nullptr;
+  if (setup.avatar) {
+    auto e = std::make_unique<AvatarContactEnergy>(setup.avatar, vertexCount, setup.avatarContact);
+    avatar = e.get();
+    out.push_back(std::move(e));
+  }
+  if (setup.selfCollision && triangles.rows() > 0) {
+    auto e = std::make_unique<SelfContactEnergy>(triangles, vertexCount, stitches, setup.selfContact, setup.selfMargin);
+    self = e.get();
+    out.push_back(std::move(e));
+  }
+  if (setup.frictionCoefficient > 0.0 && (avatar || self)) {
+    out.push_back(std::make_unique<FrictionEnergy>(avatar, self,
+                                                   FrictionParameters{setup.frictionCoefficient, setup.frictionEpsV}));
+  }
+  return out;
+}
+
+}  // namespace drape::collision

@@ -1,0 +1,120 @@
+// Candidate pairs from SelfProximity, exact penalty per pair through the stencil derivatives, per-pair results
+// computed in parallel and scattered serially into the gradient and the dynamic Hessian blocks.
+#include "drape/collision/self_contact.h"
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+namespace drape::collision {
+
+SelfContactEnergy::SelfContactEnergy(const Eigen::MatrixX3i& triangles, int vertexCount,
+                                     const std::vector<std::pair<int, int>>& mergedVertices, ContactParameters params,
+                                     double margin)
+    : m_params(params),
+      m_margin(margin > 0.0 ? margin : params.thickness),
+      m_proximity(triangles, vertexCount, mergedVertices) {}
+
+void SelfContactEnergy::beginStep(const newton::StepContext& ctx) {
+  std::lock_guard lock(m_mutex);
+  m_reference.resize(0);
+  ensureCandidates(*ctx.previousPositions);
+}
+
+void SelfContactEnergy::ensureCandidates(const Eigen::VectorXd& x) const {
+  if (m_reference.size() == x.size()) {
+    const Eigen::VectorXd diff = x - m_reference;
+    double maxMove2 = 0.0;
+    for (Eigen::Index v = 0; v < diff.size() / 3; ++v) maxMove2 = std::max(maxMove2, diff.segment<3>(3 * v).squaredNorm());
+    // Two primitives each moving at most margin/2 close a gap by at most margin.
+    if (2.0 * std::sqrt(maxMove2) <= m_margin) return;
+  }
+  m_proximity.findPairs(x, m_params.thickness + m_margin, m_vertexTriangle, m_edgeEdge);
+  m_reference = x;
+  ++m_queries;
+}
+
+std::vector<SelfContactEnergy::Evaluated> SelfContactEnergy::evaluate(const Eigen::VectorXd& x,
+                                                                      bool withHessian) const {
+  ensureCandidates(x);
+  const int vt = static_cast<int>(m_vertexTriangle.size());
+  const int total = vt + static_cast<int>(m_edgeEdge.size());
+  std::vector<Evaluated> all(total);
+  std::vector<char> active(total, 0);
+  const auto& tris = m_proximity.triangles();
+  const auto& edges = m_proximity.edges();
+  auto at = [&](int v) -> Eigen::Vector3d { return x.segment<3>(3 * v); };
+  tbb::parallel_for(0, total, [&](int k) {
+    Evaluated& e = all[k];
+    if (k < vt) {
+      const auto& p = m_vertexTriangle[k];
+      e.vertices = {p.vertex, tris(p.triangle, 0), tris(p.triangle, 1), tris(p.triangle, 2)};
+      e.distance = pointTriangleSquaredDistance(at(e.vertices[0]), at(e.vertices[1]), at(e.vertices[2]), at(e.vertices[3]));
+    } else {
+      const auto& p = m_edgeEdge[k - vt];
+      e.vertices = {edges(p.first, 0), edges(p.first, 1), edges(p.second, 0), edges(p.second, 1)};
+      e.distance = edgeEdgeSquaredDistance(at(e.vertices[0]), at(e.vertices[1]), at(e.vertices[2]), at(e.vertices[3]));
+    }
+    active[k] = penaltyFromSquaredDistance(e.distance, m_params.stiffness, m_params.thickness,
+                                           withHessian && m_params.projectHessian, e.energy, e.gradient, e.hessian);
+  });
+  std::vector<Evaluated> out;
+  for (int k = 0; k < total; ++k) {
+    if (active[k]) out.push_back(std::move(all[k]));
+  }
+  return out;
+}
+
+double SelfContactEnergy::value(const Eigen::VectorXd& x) const {
+  std::lock_guard lock(m_mutex);
+  double e = 0.0;
+  for (const Evaluated& p : evaluate(x, false)) e += p.energy;
+  return e;
+}
+
+void SelfContactEnergy::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
+  std::lock_guard lock(m_mutex);
+  for (const Evaluated& p : evaluate(x, false)) {
+    for (int i = 0; i < 4; ++i) g.segment<3>(3 * p.vertices[i]) += p.gradient.segment<3>(3 * i);
+  }
+}
+
+void SelfContactEnergy::addHessian(const Eigen::VectorXd& x, newton::BlockMatrix& h) const {
+  std::lock_guard lock(m_mutex);
+  for (const Evaluated& p : evaluate(x, true)) {
+    for (int i = 0; i < 4; ++i) {
+      for (int j = i; j < 4; ++j) {
+        const int vi = p.vertices[i];
+        const int vj = p.vertices[j];
+        const Eigen::Matrix3d b = p.hessian.block<3, 3>(3 * i, 3 * j);
+        if (vi == vj) {
+          // The same vertex twice cannot happen for non-adjacent pairs, but keep the sum exact if it does.
+          h.addDynamicBlock(vi, vi, i == j ? b : Eigen::Matrix3d(b + b.transpose()));
+        } else {
+          h.addDynamicBlock(vi, vj, b);
+        }
+      }
+    }
+  }
+}
+
+std::vector<ContactStencil> SelfContactEnergy::contacts(const Eigen::VectorXd& x) const {
+  std::lock_guard lock(m_mutex);
+  std::vector<ContactStencil> out;
+  for (const Evaluated& p : evaluate(x, false)) {
+    ContactStencil s;
+    s.vertices = p.vertices;
+    s.count = 4;
+    Eigen::Vector3d r = Eigen::Vector3d::Zero();
+    for (int i = 0; i < 4; ++i) {
+      s.weights[i] = p.distance.weights[i];
+      r += s.weights[i] * x.segment<3>(3 * p.vertices[i]);
+    }
+    s.distance = r.norm();
+    s.normal = r / s.distance;
+    out.push_back(s);
+  }
+  return out;
+}
+
+}  // namespace drape::collision

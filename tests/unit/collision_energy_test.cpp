@@ -1,0 +1,222 @@
+// Contact energies: gradients and Hessians against central finite differences (away from the activation
+// boundary), the exactness of the skipped avatar queries, SPD Hessians, and the factory's term selection.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <random>
+
+#include "drape/collision/avatar_contact.h"
+#include "drape/collision/contact_factory.h"
+#include "drape/collision/friction.h"
+#include "drape/collision/self_contact.h"
+#include "drape/geometry/primitives.h"
+
+namespace drape::collision {
+namespace {
+
+using Eigen::VectorXd;
+
+Eigen::MatrixXd denseHessian(const newton::Energy& e, const VectorXd& x) {
+  newton::BlockMatrix h(static_cast<int>(x.size() / 3), {});
+  e.addHessian(x, h);
+  return Eigen::MatrixXd(h.toSparse());
+}
+
+VectorXd gradientOf(const newton::Energy& e, const VectorXd& x) {
+  VectorXd g = VectorXd::Zero(x.size());
+  e.addGradient(x, g);
+  return g;
+}
+
+// Central differences of the value (-> gradient) and of the gradient (-> Hessian).
+void expectDerivativesMatch(const newton::Energy& e, const VectorXd& x, double step, double tol) {
+  const VectorXd g = gradientOf(e, x);
+  const Eigen::MatrixXd H = denseHessian(e, x);
+  VectorXd gFd(x.size());
+  Eigen::MatrixXd hFd(x.size(), x.size());
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    VectorXd xp = x, xm = x;
+    xp[i] += step;
+    xm[i] -= step;
+    gFd[i] = (e.value(xp) - e.value(xm)) / (2 * step);
+    hFd.col(i) = (gradientOf(e, xp) - gradientOf(e, xm)) / (2 * step);
+  }
+  EXPECT_GT(g.norm(), 0.0);
+  EXPECT_LE((g - gFd).norm(), tol * g.norm()) << "gradient\n" << g.transpose() << "\n" << gFd.transpose();
+  EXPECT_LE((H - hFd).norm(), tol * H.norm()) << "Hessian";
+}
+
+double minEigenvalue(const Eigen::MatrixXd& m) {
+  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (m + m.transpose())).eigenvalues().minCoeff();
+}
+
+TEST(CollisionEnergyTest, AvatarContactDerivativesInFaceEdgeAndVertexRegions) {
+  auto collider = std::make_shared<AvatarCollider>(makeIcosphere(Eigen::Vector3d::Zero(), 0.3, 2));
+  const TriangleMesh& mesh = collider->mesh();
+  // Vertices placed off a face centre, an edge midpoint and a mesh vertex, inside and outside.
+  std::vector<Eigen::Vector3d> points;
+  const double offsets[] = {0.004, -0.006, 0.007};
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d a = mesh.vertices.row(mesh.triangles(7 * k, 0));
+    const Eigen::Vector3d b = mesh.vertices.row(mesh.triangles(7 * k, 1));
+    const Eigen::Vector3d c = mesh.vertices.row(mesh.triangles(7 * k, 2));
+    const Eigen::Vector3d anchors[] = {(a + b + c) / 3.0, 0.5 * (a + b), a};
+    for (const auto& anchor : anchors) points.push_back(anchor * (1.0 + offsets[k] / 0.3) + Eigen::Vector3d(1e-4, 2e-4, -1e-4));
+  }
+  VectorXd x(3 * points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) x.segment<3>(3 * i) = points[i];
+  ContactParameters params;
+  params.stiffness = 50.0;
+  params.thickness = 0.01;
+  params.projectHessian = false;
+  AvatarContactEnergy energy(collider, static_cast<int>(points.size()), params);
+  EXPECT_EQ(energy.contacts(x).size(), points.size());
+  expectDerivativesMatch(energy, x, 1e-7, 1e-5);
+
+  params.projectHessian = true;
+  AvatarContactEnergy projected(collider, static_cast<int>(points.size()), params);
+  EXPECT_GE(minEigenvalue(denseHessian(projected, x)), -1e-9);
+}
+
+TEST(CollisionEnergyTest, AvatarContactSkippingIsExact) {
+  auto collider = std::make_shared<AvatarCollider>(makeIcosphere(Eigen::Vector3d::Zero(), 0.3, 3));
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = 400;
+  VectorXd x0(3 * n);
+  for (int v = 0; v < n; ++v) {
+    Eigen::Vector3d dir(u(rng), u(rng), u(rng));
+    x0.segment<3>(3 * v) = dir.normalized() * (0.3 + 0.05 * u(rng));
+  }
+  ContactParameters params;
+  params.thickness = 0.005;
+  AvatarContactEnergy lagged(collider, n, params);
+  AvatarContactEnergy fresh(collider, n, params);  // never sees beginStep: queries every vertex
+  newton::StepContext ctx;
+  ctx.previousPositions = &x0;
+  lagged.beginStep(ctx);
+  for (double amplitude : {0.0, 0.002, 0.02, 0.1}) {
+    const VectorXd x = x0 + amplitude * VectorXd::NullaryExpr(3 * n, [&] { return u(rng); });
+    EXPECT_NEAR(lagged.value(x), fresh.value(x), 1e-14 * (1.0 + fresh.value(x)));
+    EXPECT_EQ(lagged.contacts(x).size(), fresh.contacts(x).size());
+    EXPECT_LE(lagged.lastQueryCount(), fresh.lastQueryCount());
+  }
+  EXPECT_GT(fresh.contacts(x0).size(), 50u);
+}
+
+// Two triangles face to face a few millimetres apart plus a crossing edge: vertex-triangle and edge-edge pairs.
+struct TwoLayers {
+  Eigen::MatrixX3i triangles;
+  VectorXd x;
+};
+
+TwoLayers twoLayers() {
+  TwoLayers t;
+  t.triangles.resize(3, 3);
+  t.triangles << 0, 1, 2, 3, 4, 5, 6, 7, 8;
+  t.x.resize(27);
+  t.x << 0, 0, 0, 0.1, 0, 0.001, 0, 0.1, -0.0005,           // lower triangle
+      0.02, 0.021, 0.004, 0.12, 0.03, 0.0045, 0.03, 0.13, 0.0035,  // upper triangle
+      0.05, -0.01, -0.003, 0.052, 0.08, -0.0025, 0.2, 0.2, -0.02;  // an edge crossing under the lower triangle
+  return t;
+}
+
+TEST(CollisionEnergyTest, SelfContactDerivatives) {
+  const TwoLayers layers = twoLayers();
+  ContactParameters params;
+  params.stiffness = 80.0;
+  params.thickness = 0.006;
+  params.projectHessian = false;
+  SelfContactEnergy energy(layers.triangles, 9, {}, params);
+  const auto contacts = energy.contacts(layers.x);
+  ASSERT_GE(contacts.size(), 3u);
+  for (const auto& c : contacts) EXPECT_LT(c.distance, params.thickness);
+  expectDerivativesMatch(energy, layers.x, 1e-8, 1e-5);
+
+  params.projectHessian = true;
+  SelfContactEnergy projected(layers.triangles, 9, {}, params);
+  EXPECT_GE(minEigenvalue(denseHessian(projected, layers.x)), -1e-8);
+  // Far apart: no energy at all.
+  VectorXd apart = layers.x;
+  for (int v = 3; v < 6; ++v) apart[3 * v + 2] += 1.0;
+  for (int v = 6; v < 9; ++v) apart[3 * v + 2] -= 1.0;
+  EXPECT_EQ(energy.value(apart), 0.0);
+}
+
+TEST(CollisionEnergyTest, SelfContactCandidatesFollowLargeMoves) {
+  const TwoLayers layers = twoLayers();
+  ContactParameters params;
+  params.thickness = 0.006;
+  SelfContactEnergy lagged(layers.triangles, 9, {}, params);
+  VectorXd far = layers.x;
+  for (int v = 3; v < 6; ++v) far[3 * v + 2] += 0.5;
+  for (int v = 6; v < 9; ++v) far[3 * v + 2] -= 0.5;
+  newton::StepContext ctx;
+  ctx.previousPositions = &far;
+  lagged.beginStep(ctx);  // no candidates near the far configuration
+  EXPECT_EQ(lagged.candidateCount(), 0);
+  SelfContactEnergy fresh(layers.triangles, 9, {}, params);
+  EXPECT_GT(lagged.value(layers.x), 0.0);  // moved back into contact: candidates refreshed
+  EXPECT_DOUBLE_EQ(lagged.value(layers.x), fresh.value(layers.x));
+}
+
+TEST(CollisionEnergyTest, FrictionDerivativesStaticAndSlidingAndPsd) {
+  const int n = 5;
+  VectorXd start = VectorXd::LinSpaced(3 * n, 0.0, 0.1);
+  std::vector<FrictionEnergy::LaggedContact> contacts(2);
+  contacts[0].stencil.vertices = {0, 0, 0, 0};
+  contacts[0].stencil.weights = {1, 0, 0, 0};
+  contacts[0].stencil.count = 1;
+  contacts[0].stencil.normal = Eigen::Vector3d(0, 0, 1);
+  contacts[0].normalForce = 2.0;
+  contacts[1].stencil.vertices = {1, 2, 3, 4};
+  contacts[1].stencil.weights = {1.0, -0.2, -0.5, -0.3};
+  contacts[1].stencil.count = 4;
+  contacts[1].stencil.normal = Eigen::Vector3d(1, 2, 2) / 3.0;
+  contacts[1].normalForce = 0.7;
+  for (auto& c : contacts) c.tangent = Eigen::Matrix3d::Identity() - c.stencil.normal * c.stencil.normal.transpose();
+  const double h = 1e-3;
+  FrictionEnergy friction(nullptr, nullptr, FrictionParameters{0.4, 1e-3});
+  friction.setLagged(contacts, start, h);  // eps = 1e-6 m
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (double slip : {3e-7, 5e-5}) {  // static (below eps) and sliding
+    const VectorXd x = start + slip * VectorXd::NullaryExpr(3 * n, [&] { return u(rng); });
+    expectDerivativesMatch(friction, x, slip * 1e-4, 2e-4);
+    EXPECT_GE(minEigenvalue(denseHessian(friction, x)), -1e-9 * denseHessian(friction, x).norm());
+  }
+  // Sliding force magnitude on a single vertex is mu * lambda (kinetic Coulomb).
+  VectorXd x = start;
+  x.segment<3>(0) += Eigen::Vector3d(1e-3, 0, 0);
+  EXPECT_NEAR(gradientOf(friction, x).segment<3>(0).norm(), 0.4 * 2.0, 1e-12);
+  EXPECT_NEAR(frictionF0(0.0, 1.0), 1.0 / 3.0, 1e-15);
+  EXPECT_NEAR(frictionF0(1.0, 1.0), 1.0, 1e-15);
+}
+
+TEST(CollisionEnergyTest, FactoryCreatesOnlyNeededTerms) {
+  const TwoLayers layers = twoLayers();
+  ContactSetup setup;
+  setup.selfContact.thickness = 0.006;
+  EXPECT_TRUE(makeContactEnergies(setup, 9, layers.triangles, {}).empty());
+  setup.selfCollision = true;
+  auto energies = makeContactEnergies(setup, 9, layers.triangles, {});
+  ASSERT_EQ(energies.size(), 1u);
+  EXPECT_EQ(energies[0]->name(), "self_contact");
+  setup.avatar = std::make_shared<AvatarCollider>(makeBox(Eigen::Vector3d(-1, -1, -2), Eigen::Vector3d(1, 1, -1)));
+  setup.frictionCoefficient = 0.3;
+  energies = makeContactEnergies(setup, 9, layers.triangles, {});
+  ASSERT_EQ(energies.size(), 3u);
+  EXPECT_EQ(energies[0]->name(), "avatar_contact");
+  EXPECT_EQ(energies[1]->name(), "self_contact");
+  EXPECT_EQ(energies[2]->name(), "friction");
+  // Friction picks up the self contacts lagged at x_n.
+  newton::StepContext ctx;
+  ctx.previousPositions = &layers.x;
+  for (auto& e : energies) e->beginStep(ctx);
+  EXPECT_GE(static_cast<const FrictionEnergy&>(*energies[2]).laggedContacts().size(), 3u);
+  setup.frictionCoefficient = 0.0;
+  EXPECT_EQ(makeContactEnergies(setup, 9, layers.triangles, {}).size(), 2u);
+}
+
+}  // namespace
+}  // namespace drape::collision
