@@ -1,0 +1,120 @@
+// Backward-Euler Newton drape solver (newton-drape-pizana sections 3, 5; Algorithm 1): velocity-form implicit
+// Euler (eqs. 1-4) solved by Newton with a residual-decrease backtracking line search, PCG linear solves, time
+// splitting, initial relaxation and an early-stop test on the 99th percentile of per-vertex kinetic energy.
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "drape/newton/cloth_model.h"
+#include "drape/newton/energy.h"
+#include "drape/newton/linear_solve.h"
+
+namespace drape::newton {
+
+// Every paper parameter, defaults from the paper (sections 3.1, 5.1-5.4).
+struct NewtonSettings {
+  double tauNewton = 1e-3;        // Newton tolerance on |M(v - v_n) + h dE/dx|, kg m/s (tau_n)
+  int maxNewtonIterations = 5;    // I_n
+  int maxLineSearchIterations = 5;  // I_ls
+  bool projectHessians = true;    // SPD membrane/bending Hessians; false = exact (may be indefinite; tests)
+  LinearSolveOptions linear;      // tau_cg = 1e-2, 500 iterations, block-Jacobi PCG
+  double hMax = 1e-3;             // s
+  double hMin = 1e-8;             // s; a step that fails below this is Diverged
+  double omega = 0.75;            // time-splitting factor
+  int growAfterSteps = 5;         // I_s: good steps before h grows by 1/omega
+  double alpha = 5.0;             // air drag, 1/s
+  double betaStretch = 1e-2;      // stretch dissipation, s
+  double betaBend = 1e-1;         // bending dissipation, s
+  double stitchStiffness = 1e4;   // N/m
+  double pinStiffness = 1e4;      // N/m
+  bool relaxation = true;         // initial relaxation (5.2)
+  double relaxationTime = 0.1;    // s
+  double relaxationStepDivisor = 16.0;  // h = hMax / 16 during relaxation
+  double relaxationStartScale = 1e-2;   // stiffness ramp start
+  double earlyStopThreshold = 1e-8;     // J, 99th percentile of 0.5 m |v|^2
+  double earlyStopWindow = 0.1;         // s
+  double kineticPercentile = 0.99;
+  // Production speed-ups (section 6), each a switch so benchmarks can measure it (none changes the results
+  // beyond round-off). Closed-form dihedral-angle gradient instead of automatic differentiation in bending.
+  bool closedFormBending = true;
+  // Precomputed stencil -> 3x3 block slot map (6.1): Hessian assembly writes by index, no search.
+  bool cachedBlockMap = true;
+  // Stencil colouring (6.5): force and Hessian assembly in parallel (TBB) colour by colour, no atomics.
+  bool parallelAssembly = true;
+};
+
+enum class NewtonStatus { Converged, MaxIterations, Diverged, Cancelled };
+const char* toString(NewtonStatus status);
+
+struct NewtonStepReport {
+  NewtonStatus status = NewtonStatus::Converged;
+  double time = 0.0;          // simulated time after the step, s
+  double h = 0.0;             // step actually taken, s
+  int newtonIterations = 0;   // over all attempts of this step
+  int cgIterations = 0;       // over all attempts
+  int splits = 0;             // time-split retries in this step
+  double residual = 0.0;      // final Newton residual, kg m/s
+  std::vector<double> residualHistory;  // residual before the first and after every Newton iteration (last attempt)
+  double kineticPercentile = 0.0;  // 99th percentile of per-vertex kinetic energy, J
+  bool atRest = false;        // early-stop criterion met (5.4)
+  bool relaxing = false;      // step was inside the relaxation window
+  std::vector<std::string> energies;  // names of the energies used
+  // Wall time spent in this step (all attempts), seconds: Hessian assembly, gradient (residual) evaluations,
+  // linear solves.
+  double hessianSeconds = 0.0;
+  double gradientSeconds = 0.0;
+  double linearSolveSeconds = 0.0;
+};
+
+class NewtonSolver {
+ public:
+  // Builds only the energies the model needs; extra energies (contact, friction) are appended and owned.
+  // Throws std::invalid_argument on inconsistent sizes or degenerate rest triangles.
+  NewtonSolver(ClothModel model, NewtonSettings settings, std::vector<std::unique_ptr<Energy>> extra = {});
+  ~NewtonSolver();
+
+  // Advances one step (with internal time-split retries). Never throws for numerical trouble: a failure
+  // keeps the last good state and reports Diverged.
+  NewtonStepReport step();
+  void requestCancel() { m_cancel.store(true); }
+  void clearCancel() { m_cancel.store(false); }
+
+  const Eigen::VectorXd& positions() const { return m_x; }   // 3|V|, metres
+  const Eigen::VectorXd& velocities() const { return m_v; }  // 3|V|, m/s
+  const Eigen::VectorXd& masses() const { return m_mass; }   // |V|, kg
+  double time() const { return m_time; }
+  double currentStep() const { return m_h; }
+  bool atRest() const { return m_restSince >= 0.0 && m_time - m_restSince >= m_settings.earlyStopWindow; }
+  std::vector<std::string> energyNames() const;
+  const std::vector<std::unique_ptr<Energy>>& energies() const { return m_energies; }
+  NewtonSettings& settings() { return m_settings; }
+
+  // The assembly switches of the settings, as handed to the energies in StepContext.
+  AssemblyOptions assemblyOptions() const;
+  // Sum of all energies at x (joules), as of the last beginStep.
+  double totalEnergy(const Eigen::VectorXd& x) const;
+  // 99th (settings) percentile of 0.5 m_i |v_i|^2 over vertices.
+  double kineticEnergyPercentile() const;
+
+ private:
+  // Attempts one step of size h from the current state. Fills x, v and the report's counters.
+  NewtonStatus attempt(double h, double scale, Eigen::VectorXd& x, Eigen::VectorXd& v, NewtonStepReport& report);
+  void residual(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double h, Eigen::VectorXd& b) const;
+
+  ClothModel m_model;
+  NewtonSettings m_settings;
+  std::vector<std::unique_ptr<Energy>> m_energies;
+  BlockMatrix m_matrix;
+  Eigen::VectorXd m_mass;
+  Eigen::VectorXd m_x, m_v;
+  double m_time = 0.0;
+  double m_h = 0.0;
+  int m_goodSteps = 0;
+  double m_restSince = -1.0;
+  std::atomic<bool> m_cancel{false};
+};
+
+}  // namespace drape::newton

@@ -1,0 +1,67 @@
+// Dissipation potentials on strain rates for stretch and bending (newton-drape-pizana 5.3, after
+// Sanchez-Banderas and Otaduy 2018): D(v) = beta * 0.5 * eps_dot^T K eps_dot with eps_dot = J v, J the strain
+// Jacobian and K the elastic stiffness of the element, beta in seconds (paper: beta_s 1e-2, beta_b 1e-1).
+// J is lagged at the step's start positions x_n, so the step term E(x) = h D((x - x_n)/h)
+// = (beta / 2h) d^T J^T K J d, d = x - x_n, is quadratic with a constant SPD Hessian per step.
+#pragma once
+
+#include <vector>
+
+#include "drape/newton/hinge_bending.h"
+#include "drape/newton/stencil_set.h"
+#include "drape/newton/stvk_membrane.h"
+
+namespace drape::newton {
+
+// Common part of the lagged dissipations: the step's start positions and assembly switches (set in beginStep).
+class LaggedDissipation : public Energy {
+ protected:
+  void beginLagged(const StepContext& ctx) {
+    m_previous = ctx.previousPositions;
+    m_options = ctx.assembly;
+  }
+  const Eigen::VectorXd* m_previous = nullptr;
+  AssemblyOptions m_options;
+};
+
+// Stretch dissipation on the Green strain rate of the StVK membrane: per triangle
+// E = 0.5 (J d)^T W (J d), J the 3 x 9 Green strain Jacobian at x_n, W = beta A diag(kWarp, kWeft, 2 kShear) / h.
+class MembraneDissipation : public LaggedDissipation {
+ public:
+  MembraneDissipation(std::vector<MembraneElement> elements, double beta);
+  std::string_view name() const override { return "stretch_damping"; }
+  void beginStep(const StepContext& ctx) override;
+  double value(const Eigen::VectorXd& x) const override;
+  void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
+  void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const override;
+  void addCouplings(std::vector<std::pair<int, int>>& pairs) const override { m_stencils.addCouplings(pairs); }
+
+ private:
+  std::vector<MembraneElement> m_elements;
+  double m_beta;
+  StencilSet<3> m_stencils;
+  std::vector<Eigen::Matrix<double, 3, 9>> m_jacobians;  // J per triangle, at x_n
+  std::vector<Eigen::Vector3d> m_weights;                // diagonal of W per triangle, N s/m (times 1/h)
+};
+
+// Bending dissipation on the dihedral angle rate of the hinges: per hinge E = 0.5 c (g . d)^2 with g the angle
+// gradient at x_n and c = beta k_e / h.
+class BendingDissipation : public LaggedDissipation {
+ public:
+  BendingDissipation(std::vector<Hinge> hinges, double beta);
+  std::string_view name() const override { return "bending_damping"; }
+  void beginStep(const StepContext& ctx) override;
+  double value(const Eigen::VectorXd& x) const override;
+  void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
+  void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const override;
+  void addCouplings(std::vector<std::pair<int, int>>& pairs) const override { m_stencils.addCouplings(pairs); }
+
+ private:
+  std::vector<Hinge> m_hinges;
+  double m_beta;
+  StencilSet<4> m_stencils;
+  std::vector<Eigen::Matrix<double, 12, 1>> m_gradients;  // angle gradient per hinge, at x_n
+  std::vector<double> m_coefficients;                     // c per hinge
+};
+
+}  // namespace drape::newton

@@ -1,0 +1,55 @@
+// Anisotropic Saint Venant-Kirchhoff membrane in the pattern's material frame (newton-drape-pizana 3.2).
+// Per triangle with rest coordinates u_k (2D, metres) and positions x_k (3D): F = [x1-x0, x2-x0] Dm^-1 (3x2),
+// Green strain E = (F^T F - I) / 2, energy = A * 0.5 * (kWarp E00^2 + kWeft E11^2 + 2 kShear E01^2)
+// with A the rest area (m^2) and stiffness in N/m. No Poisson coupling between warp and weft.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "drape/newton/cloth_model.h"
+#include "drape/newton/energy.h"
+#include "drape/newton/stencil_set.h"
+
+namespace drape::newton {
+
+// Precomputed rest data of one triangle.
+struct MembraneElement {
+  std::array<int, 3> v{};                 // vertex indices
+  std::array<Eigen::Vector2d, 3> c;       // dF/dx_k = c_k^T: F = sum_k x_k c_k^T
+  double area = 0.0;                      // rest area, m^2
+  double kWarp = 0.0, kWeft = 0.0, kShear = 0.0;  // N/m
+};
+
+// Rest data for every triangle. Throws std::invalid_argument on a degenerate rest triangle.
+std::vector<MembraneElement> buildMembraneElements(const ClothModel& model);
+
+// Green strain rows (Voigt E00, E11, E01) differentiated w.r.t. the 9 triangle coordinates: 3 x 9.
+Eigen::Matrix<double, 3, 9> greenStrainJacobian(const MembraneElement& e, const Eigen::VectorXd& x);
+
+class StvkMembrane : public Energy {
+ public:
+  explicit StvkMembrane(const ClothModel& model);
+  std::string_view name() const override { return "membrane"; }
+  void beginStep(const StepContext& ctx) override;
+  double value(const Eigen::VectorXd& x) const override;
+  void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
+  void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const override;
+  void addCouplings(std::vector<std::pair<int, int>>& pairs) const override;
+
+  // Exact Hessian (for tests) instead of the default projected one: material term J^T C J plus the geometric
+  // term with the stress S clamped to its positive part, which is SPD.
+  void setExactHessian(bool exact) { m_exactHessian = exact; }
+  // 9x9 Hessian of one element (exact or projected per the flag above).
+  Eigen::Matrix<double, 9, 9> elementHessian(const MembraneElement& e, const Eigen::VectorXd& x) const;
+  const std::vector<MembraneElement>& elements() const { return m_elements; }
+
+ private:
+  std::vector<MembraneElement> m_elements;
+  StencilSet<3> m_stencils;  // triangles, coloured, with their block slots
+  double m_scale = 1.0;
+  bool m_exactHessian = false;
+  AssemblyOptions m_options;
+};
+
+}  // namespace drape::newton

@@ -1,0 +1,189 @@
+#include "drape/newton/hinge_bending.h"
+
+#include <Eigen/Geometry>
+#include <unsupported/Eigen/AutoDiff>
+
+#include <cmath>
+#include <map>
+
+namespace drape::newton {
+namespace {
+
+// Dihedral angle from the 12 stacked coordinates, generic in the scalar type (for automatic differentiation).
+template <typename S>
+S angleOf(const Eigen::Matrix<S, 12, 1>& q) {
+  using V3 = Eigen::Matrix<S, 3, 1>;
+  V3 x0 = q.template segment<3>(0), x1 = q.template segment<3>(3);
+  V3 x2 = q.template segment<3>(6), x3 = q.template segment<3>(9);
+  V3 e = x1 - x0;
+  V3 na = e.cross(x2 - x0);
+  V3 nb = (x3 - x0).cross(e);
+  S sine = na.cross(nb).dot(e) / e.norm();
+  S cosine = na.dot(nb);
+  using std::atan2;
+  return atan2(sine, cosine);
+}
+
+using Grad12 = Eigen::Matrix<double, 12, 1>;
+using Ad = Eigen::AutoDiffScalar<Grad12>;
+using AdAd = Eigen::AutoDiffScalar<Eigen::Matrix<Ad, 12, 1>>;
+
+Grad12 gather(const Hinge& h, const Eigen::VectorXd& x) {
+  Grad12 q;
+  for (int k = 0; k < 4; ++k) q.segment<3>(3 * k) = x.segment<3>(3 * h.v[k]);
+  return q;
+}
+
+Grad12 autodiffGradient(const Grad12& q, double& theta) {
+  Eigen::Matrix<Ad, 12, 1> qa;
+  for (int i = 0; i < 12; ++i) qa(i) = Ad(q(i), 12, i);
+  Ad t = angleOf<Ad>(qa);
+  theta = t.value();
+  return t.derivatives();
+}
+
+// Closed-form angle and gradient (Bridson et al. 2003; Tamstorf and Grinspun 2013): a wing vertex moves the angle
+// by its displacement along the wing normal over its distance to the edge, d theta / d x2 = -|e| nA / |nA|^2,
+// d theta / d x3 = -|e| nB / |nB|^2 (unnormalised normals, |n| = |e| * distance); the edge vertices take the
+// opposite of these, split by where each wing vertex projects on the edge (translation and rotation invariance).
+Grad12 closedFormGradient(const Grad12& q, double& theta) {
+  const Eigen::Vector3d x0 = q.segment<3>(0), x1 = q.segment<3>(3), x2 = q.segment<3>(6), x3 = q.segment<3>(9);
+  const Eigen::Vector3d e = x1 - x0, d2 = x2 - x0, d3 = x3 - x0;
+  const Eigen::Vector3d na = e.cross(d2), nb = d3.cross(e);
+  const double e2 = e.squaredNorm(), len = std::sqrt(e2);
+  theta = std::atan2(na.cross(nb).dot(e) / len, na.dot(nb));
+  const Eigen::Vector3d g2 = (-len / na.squaredNorm()) * na;
+  const Eigen::Vector3d g3 = (-len / nb.squaredNorm()) * nb;
+  const double a = d2.dot(e) / e2, b = d3.dot(e) / e2;  // projections of x2, x3 on the edge, from x0
+  Grad12 g;
+  g.segment<3>(0) = -(1.0 - a) * g2 - (1.0 - b) * g3;
+  g.segment<3>(3) = -a * g2 - b * g3;
+  g.segment<3>(6) = g2;
+  g.segment<3>(9) = g3;
+  return g;
+}
+
+}  // namespace
+
+std::vector<Hinge> buildHinges(const ClothModel& model) {
+  std::map<std::pair<int, int>, std::pair<int, int>> edges;  // sorted edge -> (triangle, local index of opposite)
+  std::vector<Hinge> out;
+  for (int t = 0; t < model.triangles.rows(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      int a = model.triangles(t, k), b = model.triangles(t, (k + 1) % 3), opp = model.triangles(t, (k + 2) % 3);
+      auto key = std::minmax(a, b);
+      auto it = edges.find(key);
+      if (it == edges.end()) {
+        edges[key] = {t, opp};
+        continue;
+      }
+      auto [t0, opp0] = it->second;
+      // Triangle t0 traverses (a, b) in the opposite direction in a consistently oriented mesh: t0 = (b, a, opp0).
+      Hinge h;
+      h.v = {b, a, opp0, opp};
+      Eigen::Vector2d ua = model.restCoords.row(a).transpose(), ub = model.restCoords.row(b).transpose();
+      Eigen::Vector2d d = ub - ua;
+      auto area = [&](int tri) {
+        Eigen::Vector2d p0 = model.restCoords.row(model.triangles(tri, 0)).transpose();
+        Eigen::Vector2d e1 = model.restCoords.row(model.triangles(tri, 1)).transpose() - p0;
+        Eigen::Vector2d e2 = model.restCoords.row(model.triangles(tri, 2)).transpose() - p0;
+        return 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+      };
+      double len2 = d.squaredNorm();
+      Eigen::Vector2d dir = d / std::sqrt(len2);
+      auto kb = [&](int tri) {
+        const TriangleFabric& f = model.fabric(tri);
+        return f.bendWarp * dir.y() * dir.y() + f.bendWeft * dir.x() * dir.x();
+      };
+      h.stiffness = 0.5 * (kb(t0) + kb(t)) * 3.0 * len2 / (area(t0) + area(t));
+      if (h.stiffness > 0.0) out.push_back(h);
+      edges.erase(it);  // a third triangle on the same edge (non-manifold) starts a new pair
+    }
+  }
+  return out;
+}
+
+double hingeAngle(const Hinge& hinge, const Eigen::VectorXd& x) { return angleOf<double>(gather(hinge, x)); }
+
+Grad12 hingeAngleGradient(const Hinge& hinge, const Eigen::VectorXd& x) {
+  double theta = 0.0;
+  return closedFormGradient(gather(hinge, x), theta);
+}
+
+Grad12 hingeAngleGradientAutodiff(const Hinge& hinge, const Eigen::VectorXd& x) {
+  double theta = 0.0;
+  return autodiffGradient(gather(hinge, x), theta);
+}
+
+Grad12 hingeAngleGradient(const Hinge& hinge, const Eigen::VectorXd& x, bool closedForm, double& theta) {
+  Grad12 q = gather(hinge, x);
+  return closedForm ? closedFormGradient(q, theta) : autodiffGradient(q, theta);
+}
+
+Eigen::Matrix<double, 12, 12> hingeAngleHessian(const Hinge& hinge, const Eigen::VectorXd& x) {
+  Grad12 q = gather(hinge, x);
+  Eigen::Matrix<AdAd, 12, 1> qa;
+  for (int i = 0; i < 12; ++i) {
+    Ad inner(q(i), 12, i);
+    qa(i) = AdAd(inner);
+    qa(i).derivatives() = Eigen::Matrix<Ad, 12, 1>::Zero();
+    qa(i).derivatives()(i) = Ad(1.0, Grad12::Zero());
+  }
+  AdAd theta = angleOf<AdAd>(qa);
+  Eigen::Matrix<double, 12, 12> h;
+  for (int i = 0; i < 12; ++i) h.row(i) = theta.derivatives()(i).derivatives().transpose();
+  return 0.5 * (h + h.transpose());
+}
+
+HingeBending::HingeBending(const ClothModel& model) : m_hinges(buildHinges(model)) {
+  std::vector<std::array<int, 4>> stencils;
+  stencils.reserve(m_hinges.size());
+  for (const auto& h : m_hinges) stencils.push_back(h.v);
+  m_stencils = StencilSet<4>(std::move(stencils));
+}
+
+void HingeBending::beginStep(const StepContext& ctx) {
+  m_scale = ctx.stiffnessScale;
+  m_options = ctx.assembly;
+}
+
+double HingeBending::value(const Eigen::VectorXd& x) const {
+  double sum = 0.0;
+  for (const auto& h : m_hinges) {
+    double theta = hingeAngle(h, x);
+    sum += 0.5 * h.stiffness * theta * theta;
+  }
+  return m_scale * sum;
+}
+
+void HingeBending::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
+  const bool closedForm = m_options.closedFormBending;
+  m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
+    for (int i = 0; i < count; ++i) {
+      const Hinge& h = m_hinges[ids[i]];
+      double theta = 0.0;
+      Grad12 grad = hingeAngleGradient(h, x, closedForm, theta);
+      m_stencils.addGradient(ids[i], (m_scale * h.stiffness * theta) * grad, g);
+    }
+  });
+}
+
+void HingeBending::addHessian(const Eigen::VectorXd& x, BlockMatrix& hm) const {
+  const bool cached = m_options.cachedBlockMap, closedForm = m_options.closedFormBending;
+  if (cached) m_stencils.prepare(hm);
+  m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
+    for (int i = 0; i < count; ++i) {
+      const Hinge& h = m_hinges[ids[i]];
+      double theta = 0.0;
+      Grad12 grad = hingeAngleGradient(h, x, closedForm, theta);
+      Eigen::Matrix<double, 12, 12> he = grad * grad.transpose();
+      if (m_exactHessian) he += theta * hingeAngleHessian(h, x);
+      he *= m_scale * h.stiffness;
+      m_stencils.addHessian(ids[i], he, hm, cached);
+    }
+  });
+}
+
+void HingeBending::addCouplings(std::vector<std::pair<int, int>>& pairs) const { m_stencils.addCouplings(pairs); }
+
+}  // namespace drape::newton

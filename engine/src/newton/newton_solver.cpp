@@ -1,0 +1,226 @@
+#include "drape/newton/newton_solver.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "drape/newton/body_forces.h"
+#include "drape/newton/hinge_bending.h"
+#include "drape/newton/springs.h"
+#include "drape/newton/strain_rate_damping.h"
+#include "drape/newton/stvk_membrane.h"
+
+namespace drape::newton {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+}  // namespace
+
+const char* toString(NewtonStatus status) {
+  switch (status) {
+    case NewtonStatus::Converged: return "converged";
+    case NewtonStatus::MaxIterations: return "max_iterations";
+    case NewtonStatus::Diverged: return "diverged";
+    case NewtonStatus::Cancelled: return "cancelled";
+  }
+  return "unknown";
+}
+
+NewtonSolver::NewtonSolver(ClothModel model, NewtonSettings settings, std::vector<std::unique_ptr<Energy>> extra)
+    : m_model(std::move(model)), m_settings(settings) {
+  const int n = m_model.numVertices();
+  if (m_model.positions.size() != 3 * n)
+    throw std::invalid_argument("cloth model: positions have " + std::to_string(m_model.positions.size()) +
+                                " entries, expected 3 x " + std::to_string(n) + " vertices");
+  if (m_model.fabrics.empty() || (m_model.fabrics.size() != 1 && m_model.fabrics.size() != size_t(m_model.triangles.rows())))
+    throw std::invalid_argument("cloth model: need one fabric or one per triangle");
+  if (m_model.triangles.size() > 0 && (m_model.triangles.minCoeff() < 0 || m_model.triangles.maxCoeff() >= n))
+    throw std::invalid_argument("cloth model: triangle vertex index out of range");
+  m_x = m_model.positions;
+  m_v = m_model.velocities.size() == 3 * n ? m_model.velocities : Eigen::VectorXd::Zero(3 * n);
+  m_mass = lumpedVertexMasses(m_model);
+
+  auto membrane = std::make_unique<StvkMembrane>(m_model);
+  membrane->setExactHessian(!m_settings.projectHessians);
+  std::vector<MembraneElement> elements = membrane->elements();
+  m_energies.push_back(std::move(membrane));
+  auto bending = std::make_unique<HingeBending>(m_model);
+  bending->setExactHessian(!m_settings.projectHessians);
+  std::vector<Hinge> hinges = bending->hinges();
+  if (!bending->empty()) m_energies.push_back(std::move(bending));
+  if (!m_model.stitches.empty())
+    m_energies.push_back(std::make_unique<StitchSprings>(m_model.stitches, m_settings.stitchStiffness));
+  if (!m_model.pinned.empty()) {
+    std::vector<Eigen::Vector3d> targets = m_model.pinTargets;
+    if (targets.empty())
+      for (int v : m_model.pinned) targets.push_back(m_x.segment<3>(3 * v));
+    m_energies.push_back(std::make_unique<PinSprings>(m_model.pinned, targets, m_settings.pinStiffness));
+  }
+  if (m_model.gravity.squaredNorm() > 0.0) m_energies.push_back(std::make_unique<Gravity>(m_mass, m_model.gravity));
+  if (m_settings.alpha > 0.0) m_energies.push_back(std::make_unique<AirDrag>(m_mass, m_settings.alpha));
+  if (m_settings.betaStretch > 0.0)
+    m_energies.push_back(std::make_unique<MembraneDissipation>(elements, m_settings.betaStretch));
+  if (m_settings.betaBend > 0.0 && !hinges.empty())
+    m_energies.push_back(std::make_unique<BendingDissipation>(hinges, m_settings.betaBend));
+  for (auto& e : extra) m_energies.push_back(std::move(e));
+
+  std::vector<std::pair<int, int>> couplings;
+  for (const auto& e : m_energies) e->addCouplings(couplings);
+  m_matrix.build(n, couplings);
+  m_h = m_settings.relaxation ? m_settings.hMax / m_settings.relaxationStepDivisor : m_settings.hMax;
+}
+
+NewtonSolver::~NewtonSolver() = default;
+
+AssemblyOptions NewtonSolver::assemblyOptions() const {
+  AssemblyOptions o;
+  o.closedFormBending = m_settings.closedFormBending;
+  o.cachedBlockMap = m_settings.cachedBlockMap;
+  o.parallel = m_settings.parallelAssembly;
+  return o;
+}
+
+std::vector<std::string> NewtonSolver::energyNames() const {
+  std::vector<std::string> names;
+  for (const auto& e : m_energies) names.emplace_back(e->name());
+  return names;
+}
+
+double NewtonSolver::totalEnergy(const Eigen::VectorXd& x) const {
+  double sum = 0.0;
+  for (const auto& e : m_energies) sum += e->value(x);
+  return sum;
+}
+
+double NewtonSolver::kineticEnergyPercentile() const {
+  const int n = static_cast<int>(m_mass.size());
+  if (n == 0) return 0.0;
+  std::vector<double> ke(n);
+  for (int i = 0; i < n; ++i) ke[i] = 0.5 * m_mass(i) * m_v.segment<3>(3 * i).squaredNorm();
+  int k = std::clamp(static_cast<int>(std::ceil(m_settings.kineticPercentile * n)) - 1, 0, n - 1);
+  std::nth_element(ke.begin(), ke.begin() + k, ke.end());
+  return ke[k];
+}
+
+// Right-hand side of eq. 4: b = M (v_n - v) - h dE/dx(x); its norm is the Newton residual.
+void NewtonSolver::residual(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double h, Eigen::VectorXd& b) const {
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
+  for (const auto& e : m_energies) e->addGradient(x, g);
+  b = -h * g;
+  for (int i = 0; i < m_mass.size(); ++i) b.segment<3>(3 * i) += m_mass(i) * (m_v.segment<3>(3 * i) - v.segment<3>(3 * i));
+}
+
+NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, Eigen::VectorXd& v,
+                                   NewtonStepReport& report) {
+  StepContext ctx{&m_x, &m_v, h, m_time, scale, assemblyOptions()};
+  for (auto& e : m_energies) e->beginStep(ctx);
+  v = m_v;
+  x = m_x + h * v;
+  Eigen::VectorXd b, dv, vls, xls, bls;
+  auto t0 = Clock::now();
+  residual(x, v, h, b);
+  report.gradientSeconds += secondsSince(t0);
+  if (!b.allFinite()) return NewtonStatus::Diverged;
+  double rn = b.norm();
+  report.residual = rn;
+  report.residualHistory.assign(1, rn);
+  // As Algorithm 1, at least one Newton iteration runs before the tolerance test.
+  const double invH2 = 1.0 / (h * h);
+  for (int it = 0; it < m_settings.maxNewtonIterations; ++it) {
+    if (m_cancel.load()) return NewtonStatus::Cancelled;
+    // (M + h^2 H) dv = b, solved as (M / h^2 + H) dv = b / h^2.
+    t0 = Clock::now();
+    m_matrix.setZero();
+    for (const auto& e : m_energies) e->addHessian(x, m_matrix);
+    for (int i = 0; i < m_mass.size(); ++i) m_matrix.diagonalBlock(i).diagonal().array() += m_mass(i) * invH2;
+    report.hessianSeconds += secondsSince(t0);
+    t0 = Clock::now();
+    LinearSolveResult ls = solveLinear(m_matrix, b * invH2, dv, m_settings.linear);
+    report.linearSolveSeconds += secondsSince(t0);
+    ++report.newtonIterations;
+    report.cgIterations += ls.iterations;
+    if (!ls.ok) return NewtonStatus::Diverged;
+    // Backtracking line search halving the step until the residual decreases (Algorithm 1, lines 15-27).
+    bool accepted = false;
+    double f = 1.0;
+    for (int k = 0; k < m_settings.maxLineSearchIterations && !accepted; ++k, f *= 0.5) {
+      vls = v + f * dv;
+      xls = m_x + h * vls;
+      t0 = Clock::now();
+      residual(xls, vls, h, bls);
+      report.gradientSeconds += secondsSince(t0);
+      double r = bls.norm();
+      if (std::isfinite(r) && r < rn) {
+        accepted = true;
+        rn = r;
+        v.swap(vls);
+        x.swap(xls);
+        b.swap(bls);
+      }
+    }
+    report.residual = rn;
+    if (accepted) report.residualHistory.push_back(rn);
+    if (!accepted) return rn < m_settings.tauNewton ? NewtonStatus::Converged : NewtonStatus::Diverged;
+    if (rn < m_settings.tauNewton) return NewtonStatus::Converged;
+  }
+  return NewtonStatus::MaxIterations;
+}
+
+NewtonStepReport NewtonSolver::step() {
+  NewtonStepReport report;
+  report.energies = energyNames();
+  report.time = m_time;
+  const NewtonSettings& s = m_settings;
+  const bool relaxing = s.relaxation && m_time < s.relaxationTime;
+  report.relaxing = relaxing;
+  const double hCap = relaxing ? s.hMax / s.relaxationStepDivisor : s.hMax;
+  m_h = std::min(m_h, hCap);
+  const double scale =
+      relaxing ? s.relaxationStartScale + (1.0 - s.relaxationStartScale) * (m_time / s.relaxationTime) : 1.0;
+  Eigen::VectorXd x, v;
+  while (true) {
+    if (m_cancel.load()) {
+      report.status = NewtonStatus::Cancelled;
+      return report;
+    }
+    NewtonStatus st = attempt(m_h, scale, x, v, report);
+    if (st == NewtonStatus::Cancelled) {
+      report.status = st;
+      return report;  // state untouched: the step restarts from the last good state
+    }
+    if (st == NewtonStatus::Converged && x.allFinite() && v.allFinite()) break;
+    // Time splitting (3.1.3): restore (state was never overwritten) and retry with a smaller step.
+    m_goodSteps = 0;
+    ++report.splits;
+    if (m_h * s.omega < s.hMin) {
+      report.status = st == NewtonStatus::MaxIterations ? NewtonStatus::MaxIterations : NewtonStatus::Diverged;
+      report.h = m_h;
+      m_h = hCap;
+      report.kineticPercentile = kineticEnergyPercentile();
+      return report;
+    }
+    m_h *= s.omega;
+  }
+  m_x = x;
+  m_v = relaxing ? Eigen::VectorXd::Zero(v.size()) : v;  // relaxation zeroes velocities after every step (5.2)
+  report.h = m_h;
+  m_time += m_h;
+  report.time = m_time;
+  report.status = NewtonStatus::Converged;
+  if (++m_goodSteps >= s.growAfterSteps && m_h < hCap) {
+    m_h = std::min(hCap, m_h / s.omega);
+    m_goodSteps = 0;
+  }
+  report.kineticPercentile = kineticEnergyPercentile();
+  if (relaxing || report.kineticPercentile >= s.earlyStopThreshold)
+    m_restSince = -1.0;
+  else if (m_restSince < 0.0)
+    m_restSince = m_time - m_h;
+  report.atRest = atRest();
+  return report;
+}
+
+}  // namespace drape::newton

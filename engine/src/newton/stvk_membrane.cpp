@@ -1,0 +1,122 @@
+#include "drape/newton/stvk_membrane.h"
+
+#include <Eigen/Eigenvalues>
+#include <stdexcept>
+#include <string>
+
+namespace drape::newton {
+namespace {
+
+Eigen::Matrix<double, 3, 2> deformationGradient(const MembraneElement& e, const Eigen::VectorXd& x) {
+  Eigen::Matrix<double, 3, 2> f = Eigen::Matrix<double, 3, 2>::Zero();
+  for (int k = 0; k < 3; ++k) f += x.segment<3>(3 * e.v[k]) * e.c[k].transpose();
+  return f;
+}
+
+// Voigt Green strain (E00, E11, E01).
+Eigen::Vector3d greenStrain(const Eigen::Matrix<double, 3, 2>& f) {
+  return {0.5 * (f.col(0).squaredNorm() - 1.0), 0.5 * (f.col(1).squaredNorm() - 1.0), 0.5 * f.col(0).dot(f.col(1))};
+}
+
+Eigen::Vector3d voigtWeights(const MembraneElement& e) { return {e.kWarp, e.kWeft, 2.0 * e.kShear}; }
+
+}  // namespace
+
+std::vector<MembraneElement> buildMembraneElements(const ClothModel& model) {
+  std::vector<MembraneElement> out(model.triangles.rows());
+  for (int t = 0; t < model.triangles.rows(); ++t) {
+    MembraneElement& e = out[t];
+    for (int k = 0; k < 3; ++k) e.v[k] = model.triangles(t, k);
+    Eigen::Vector2d u0 = model.restCoords.row(e.v[0]).transpose();
+    Eigen::Matrix2d dm;
+    dm.col(0) = model.restCoords.row(e.v[1]).transpose() - u0;
+    dm.col(1) = model.restCoords.row(e.v[2]).transpose() - u0;
+    double det = dm.determinant();
+    if (!(std::abs(det) > 1e-14))
+      throw std::invalid_argument("cloth model: triangle " + std::to_string(t) + " has zero rest area");
+    Eigen::Matrix2d inv = dm.inverse();
+    e.c[1] = inv.row(0).transpose();
+    e.c[2] = inv.row(1).transpose();
+    e.c[0] = -(e.c[1] + e.c[2]);
+    e.area = 0.5 * std::abs(det);
+    const TriangleFabric& fab = model.fabric(t);
+    e.kWarp = fab.stretchWarp;
+    e.kWeft = fab.stretchWeft;
+    e.kShear = fab.shear;
+  }
+  return out;
+}
+
+Eigen::Matrix<double, 3, 9> greenStrainJacobian(const MembraneElement& e, const Eigen::VectorXd& x) {
+  Eigen::Matrix<double, 3, 2> f = deformationGradient(e, x);
+  Eigen::Matrix<double, 3, 9> j;
+  for (int k = 0; k < 3; ++k) {
+    j.block<1, 3>(0, 3 * k) = e.c[k](0) * f.col(0).transpose();
+    j.block<1, 3>(1, 3 * k) = e.c[k](1) * f.col(1).transpose();
+    j.block<1, 3>(2, 3 * k) = 0.5 * (e.c[k](0) * f.col(1) + e.c[k](1) * f.col(0)).transpose();
+  }
+  return j;
+}
+
+StvkMembrane::StvkMembrane(const ClothModel& model) : m_elements(buildMembraneElements(model)) {
+  std::vector<std::array<int, 3>> stencils;
+  stencils.reserve(m_elements.size());
+  for (const auto& e : m_elements) stencils.push_back(e.v);
+  m_stencils = StencilSet<3>(std::move(stencils));
+}
+
+void StvkMembrane::beginStep(const StepContext& ctx) {
+  m_scale = ctx.stiffnessScale;
+  m_options = ctx.assembly;
+}
+
+double StvkMembrane::value(const Eigen::VectorXd& x) const {
+  double sum = 0.0;
+  for (const auto& e : m_elements) {
+    Eigen::Vector3d s = greenStrain(deformationGradient(e, x));
+    sum += e.area * 0.5 * s.cwiseProduct(voigtWeights(e)).dot(s);
+  }
+  return m_scale * sum;
+}
+
+void StvkMembrane::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
+  m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
+    for (int i = 0; i < count; ++i) {
+      const MembraneElement& e = m_elements[ids[i]];
+      Eigen::Vector3d s = greenStrain(deformationGradient(e, x));
+      Eigen::Matrix<double, 9, 1> ge = (m_scale * e.area) * greenStrainJacobian(e, x).transpose() *
+                                       s.cwiseProduct(voigtWeights(e));
+      m_stencils.addGradient(ids[i], ge, g);
+    }
+  });
+}
+
+Eigen::Matrix<double, 9, 9> StvkMembrane::elementHessian(const MembraneElement& e, const Eigen::VectorXd& x) const {
+  Eigen::Matrix<double, 3, 2> f = deformationGradient(e, x);
+  Eigen::Vector3d sigma = greenStrain(f).cwiseProduct(voigtWeights(e));  // dpsi/ds in Voigt form
+  Eigen::Matrix<double, 3, 9> j = greenStrainJacobian(e, x);
+  Eigen::Matrix<double, 9, 9> h = j.transpose() * voigtWeights(e).asDiagonal() * j;
+  // Second Piola-Kirchhoff stress as a symmetric 2x2 tensor.
+  Eigen::Matrix2d stress;
+  stress << sigma(0), 0.5 * sigma(2), 0.5 * sigma(2), sigma(1);
+  if (!m_exactHessian) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(stress);
+    Eigen::Vector2d lambda = eig.eigenvalues().cwiseMax(0.0);
+    stress = eig.eigenvectors() * lambda.asDiagonal() * eig.eigenvectors().transpose();
+  }
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) h.block<3, 3>(3 * a, 3 * b).diagonal().array() += e.c[a].dot(stress * e.c[b]);
+  return (m_scale * e.area) * h;
+}
+
+void StvkMembrane::addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const {
+  const bool cached = m_options.cachedBlockMap;
+  if (cached) m_stencils.prepare(h);
+  m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
+    for (int i = 0; i < count; ++i) m_stencils.addHessian(ids[i], elementHessian(m_elements[ids[i]], x), h, cached);
+  });
+}
+
+void StvkMembrane::addCouplings(std::vector<std::pair<int, int>>& pairs) const { m_stencils.addCouplings(pairs); }
+
+}  // namespace drape::newton

@@ -1,0 +1,266 @@
+// Behaviour of the Backward-Euler Newton solver: quadratic convergence, hanging cloth equilibrium and symmetry,
+// seams closing, time splitting, initial relaxation, divergence and cancellation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "drape/newton/newton_solver.h"
+#include "drape/newton/springs.h"
+
+using namespace drape::newton;
+
+namespace {
+
+// Cotton-like fabric of the brief.
+TriangleFabric cotton() {
+  TriangleFabric f;
+  f.stretchWarp = f.stretchWeft = 5000.0;
+  f.shear = 5000.0 / 20.0;
+  f.bendWarp = f.bendWeft = 5e-6;
+  f.density = 0.12;
+  return f;
+}
+
+// Vertical panel of n x n vertices, side length `size`, in the x-y plane with its bottom-left corner at
+// `origin`. Quad diagonals mirror about the middle column so the mesh is left-right symmetric.
+void appendPanel(ClothModel& m, int n, double size, const Eigen::Vector3d& origin) {
+  const int base = m.numVertices();
+  const double d = size / (n - 1);
+  m.restCoords.conservativeResize(base + n * n, 2);
+  m.positions.conservativeResize(3 * (base + n * n));
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      m.restCoords.row(base + i * n + j) << j * d, i * d;
+      m.positions.segment<3>(3 * (base + i * n + j)) = origin + Eigen::Vector3d(j * d, i * d, 0.0);
+    }
+  int t = static_cast<int>(m.triangles.rows());
+  m.triangles.conservativeResize(t + 2 * (n - 1) * (n - 1), 3);
+  for (int i = 0; i + 1 < n; ++i)
+    for (int j = 0; j + 1 < n; ++j) {
+      int a = base + i * n + j, b = a + 1, c = a + n, e = c + 1;
+      if (2 * j < n - 1) {
+        m.triangles.row(t++) << a, b, e;
+        m.triangles.row(t++) << a, e, c;
+      } else {
+        m.triangles.row(t++) << a, b, c;
+        m.triangles.row(t++) << b, e, c;
+      }
+    }
+}
+
+ClothModel hangingCloth(int n, double size) {
+  ClothModel m;
+  m.fabrics = {cotton()};
+  appendPanel(m, n, size, Eigen::Vector3d(0, 0, 0));
+  m.pinned = {n * (n - 1), n * n - 1};  // top corners
+  return m;
+}
+
+double maxEdgeStretch(const ClothModel& m, const Eigen::VectorXd& x) {
+  double worst = 0.0;
+  for (int t = 0; t < m.triangles.rows(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      int a = m.triangles(t, k), b = m.triangles(t, (k + 1) % 3);
+      double rest = (m.restCoords.row(a) - m.restCoords.row(b)).norm();
+      worst = std::max(worst, (x.segment<3>(3 * a) - x.segment<3>(3 * b)).norm() / rest);
+    }
+  return worst;
+}
+
+// An energy that turns NaN once armed (forces divergence).
+class PoisonEnergy : public Energy {
+ public:
+  bool armed = false;
+  std::string_view name() const override { return "poison"; }
+  double value(const Eigen::VectorXd&) const override { return armed ? NAN : 0.0; }
+  void addGradient(const Eigen::VectorXd&, Eigen::VectorXd& g) const override {
+    if (armed) g(0) += NAN;
+  }
+  void addHessian(const Eigen::VectorXd&, BlockMatrix&) const override {}
+};
+
+}  // namespace
+
+TEST(NewtonSolver, QuadraticConvergenceOnSmoothProblem) {
+  ClothModel m = hangingCloth(6, 0.2);
+  for (int v = 0; v < m.numVertices(); ++v) m.positions(3 * v + 2) = 0.01 * std::sin(7.0 * v);  // out of plane
+  NewtonSettings s;
+  s.relaxation = false;
+  s.alpha = s.betaStretch = s.betaBend = 0.0;
+  s.projectHessians = false;  // exact Hessians: quadratic convergence expected
+  s.hMax = 5e-3;
+  s.tauNewton = 1e-13;
+  s.maxNewtonIterations = 12;
+  s.maxLineSearchIterations = 30;
+  s.linear.kind = LinearSolverKind::Cholmod;
+  NewtonSolver solver(m, s);
+  NewtonStepReport r = solver.step();
+  std::printf("residuals:");
+  for (double x : r.residualHistory) std::printf(" %.3e", x);
+  std::printf("\n");
+  ASSERT_GE(r.residualHistory.size(), 4u);
+  EXPECT_EQ(r.splits, 0);
+  // Asymptotic regime: r_{k+1} <= C r_k^2 with a modest C over the last two contractions (linear convergence
+  // with rate q would give r_{k+1} / r_k^2 = q / r_k, i.e. > 1e4 once r_k < 1e-5).
+  const auto& h = r.residualHistory;
+  EXPECT_LT(h.back(), 1e-12);
+  int checked = 0;
+  for (size_t k = h.size() - 1; k >= 1 && checked < 2; --k) {
+    if (h[k - 1] > 1e-5) break;
+    double c = h[k] / (h[k - 1] * h[k - 1]);
+    std::printf("r_%zu / r_%zu^2 = %.1f\n", k, k - 1, c);
+    EXPECT_LT(c, 2e3);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 2);
+}
+
+TEST(NewtonSolver, HangingClothReachesSymmetricEquilibrium) {
+  const int n = 21;
+  ClothModel m = hangingCloth(n, 1.0);
+  NewtonSolver solver(m, NewtonSettings{});
+  EXPECT_EQ(solver.energyNames(), (std::vector<std::string>{"membrane", "bending", "pins", "gravity", "air_drag",
+                                                            "stretch_damping", "bending_damping"}));
+  NewtonStepReport r;
+  int steps = 0;
+  while (!solver.atRest() && solver.time() < 4.0) {
+    r = solver.step();
+    ASSERT_NE(r.status, NewtonStatus::Diverged) << "t = " << solver.time();
+    ++steps;
+  }
+  std::printf("steps %d, t %.3f s, residual %.2e, KE99 %.2e, h %.2e\n", steps, solver.time(), r.residual,
+              r.kineticPercentile, r.h);
+  EXPECT_TRUE(solver.atRest());
+  EXPECT_LT(r.residual, NewtonSettings{}.tauNewton);
+  const Eigen::VectorXd& x = solver.positions();
+  ASSERT_TRUE(x.allFinite());
+  // The bottom has dropped under gravity, the corners stay pinned (springs: within 0.2 mm).
+  EXPECT_LT(x(3 * (n / 2) + 1), -1e-3);
+  EXPECT_LT((x.segment<3>(3 * m.pinned[0]) - m.positions.segment<3>(3 * m.pinned[0])).norm(), 2e-4);
+  double asym = 0.0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      Eigen::Vector3d a = x.segment<3>(3 * (i * n + j)), b = x.segment<3>(3 * (i * n + n - 1 - j));
+      asym = std::max(asym, std::abs(a.x() + b.x() - 1.0) + std::abs(a.y() - b.y()) + std::abs(a.z() - b.z()));
+    }
+  EXPECT_LT(asym, 1e-6);  // relative to the 1 m width
+}
+
+TEST(NewtonSolver, StitchedPanelsCloseTheSeam) {
+  const int n = 6;
+  ClothModel m;
+  m.fabrics = {cotton()};
+  appendPanel(m, n, 0.2, Eigen::Vector3d(0, 0, 0));
+  appendPanel(m, n, 0.2, Eigen::Vector3d(0.25, 0, 0));  // 5 cm gap
+  for (int i = 0; i < n; ++i) m.stitches.emplace_back(i * n + n - 1, n * n + i * n);
+  m.pinned = {n * (n - 1), n * n + n * n - 1};
+  m.pinTargets = {Eigen::Vector3d(0, 0.2, 0), Eigen::Vector3d(0.4, 0.2, 0)};
+  NewtonSolver solver(m, NewtonSettings{});
+  StitchSprings probe(m.stitches, 1.0);
+  EXPECT_NEAR(probe.maxGap(solver.positions()), 0.05, 1e-12);
+  while (solver.time() < 0.5) ASSERT_NE(solver.step().status, NewtonStatus::Diverged);
+  double gap = probe.maxGap(solver.positions());
+  std::printf("seam gap after 0.5 s: %.3e m\n", gap);
+  EXPECT_LT(gap, 1e-3);
+  EXPECT_TRUE(solver.positions().allFinite());
+}
+
+TEST(NewtonSolver, TimeSplittingRecoversFromForcedFailure) {
+  ClothModel m = hangingCloth(8, 0.3);
+  for (int v = 0; v < m.numVertices(); ++v) m.positions(3 * v) *= 1.3;  // stretched start
+  NewtonSettings s;
+  s.relaxation = false;
+  s.maxNewtonIterations = 1;
+  s.hMax = 0.05;  // 50x the paper's h_max
+  s.tauNewton = 1e-5;
+  NewtonSolver solver(m, s);
+  NewtonStepReport r = solver.step();
+  std::printf("splits %d, h %.3e, residual %.2e\n", r.splits, r.h, r.residual);
+  EXPECT_EQ(r.status, NewtonStatus::Converged);
+  EXPECT_GT(r.splits, 0);
+  EXPECT_LT(r.h, 0.05);
+  EXPECT_NEAR(r.h, 0.05 * std::pow(0.75, r.splits), 1e-15);
+  for (int k = 0; k < 20; ++k) ASSERT_EQ(solver.step().status, NewtonStatus::Converged);
+  EXPECT_TRUE(solver.positions().allFinite());
+}
+
+TEST(NewtonSolver, RelaxationSettlesPreStretchedCloth) {
+  ClothModel m = hangingCloth(9, 0.3);
+  m.pinned.clear();
+  m.gravity.setZero();
+  m.positions *= 2.0;  // 2x pre-stretch in both directions
+  NewtonSolver solver(m, NewtonSettings{});
+  EXPECT_NEAR(maxEdgeStretch(m, solver.positions()), 2.0, 1e-12);
+  int relaxingSteps = 0;
+  while (solver.time() < 0.2) {
+    NewtonStepReport r = solver.step();
+    ASSERT_NE(r.status, NewtonStatus::Diverged);
+    ASSERT_TRUE(solver.positions().allFinite() && solver.velocities().allFinite());
+    if (r.relaxing) {
+      ++relaxingSteps;
+      EXPECT_LE(r.h, 1e-3 / 16 + 1e-18);
+      EXPECT_EQ(solver.velocities().norm(), 0.0);
+    }
+  }
+  double stretch = maxEdgeStretch(m, solver.positions());
+  std::printf("relaxing steps %d, max edge stretch after 0.2 s: %.4f\n", relaxingSteps, stretch);
+  EXPECT_GE(relaxingSteps, 1000);  // 0.1 s at h_max / 16
+  EXPECT_LT(stretch, 1.05);
+}
+
+TEST(NewtonSolver, DivergenceKeepsLastGoodStateAndCancelStops) {
+  ClothModel m = hangingCloth(5, 0.2);
+  std::vector<std::unique_ptr<Energy>> extra;
+  auto poison = std::make_unique<PoisonEnergy>();
+  PoisonEnergy* p = poison.get();
+  extra.push_back(std::move(poison));
+  NewtonSettings s;
+  s.relaxation = false;
+  s.hMin = 1e-5;
+  NewtonSolver solver(m, s, std::move(extra));
+  for (int k = 0; k < 3; ++k) ASSERT_EQ(solver.step().status, NewtonStatus::Converged);
+  Eigen::VectorXd x = solver.positions(), v = solver.velocities();
+  double t = solver.time();
+  p->armed = true;
+  NewtonStepReport r = solver.step();
+  EXPECT_EQ(r.status, NewtonStatus::Diverged);
+  EXPECT_GT(r.splits, 0);
+  EXPECT_EQ(solver.positions(), x);
+  EXPECT_EQ(solver.velocities(), v);
+  EXPECT_EQ(solver.time(), t);
+  p->armed = false;
+  EXPECT_EQ(solver.step().status, NewtonStatus::Converged);
+  solver.requestCancel();
+  Eigen::VectorXd before = solver.positions();
+  EXPECT_EQ(solver.step().status, NewtonStatus::Cancelled);
+  EXPECT_EQ(solver.positions(), before);
+}
+
+TEST(NewtonSolver, PreconditionersAndDirectSolveAgree) {
+  ClothModel m = hangingCloth(8, 0.3);
+  Eigen::VectorXd reference;
+  for (auto [kind, pre, mixed] :
+       std::vector<std::tuple<LinearSolverKind, Preconditioner, bool>>{
+           {LinearSolverKind::Cholmod, Preconditioner::None, false},
+           {LinearSolverKind::Pcg, Preconditioner::None, false},
+           {LinearSolverKind::Pcg, Preconditioner::Diagonal, false},
+           {LinearSolverKind::Pcg, Preconditioner::BlockJacobi, false},
+           {LinearSolverKind::Pcg, Preconditioner::IncompleteCholesky, false},
+           {LinearSolverKind::Pcg, Preconditioner::BlockJacobi, true}}) {
+    NewtonSettings s;
+    s.relaxation = false;
+    s.tauNewton = 1e-9;
+    s.maxNewtonIterations = 20;
+    s.linear.kind = kind;
+    s.linear.preconditioner = pre;
+    s.linear.mixedPrecision = mixed;
+    s.linear.tolerance = 1e-5;
+    NewtonSolver solver(m, s);
+    for (int k = 0; k < 5; ++k) ASSERT_EQ(solver.step().status, NewtonStatus::Converged);
+    if (reference.size() == 0)
+      reference = solver.positions();
+    else
+      EXPECT_LT((solver.positions() - reference).norm(), 1e-6 * reference.norm()) << int(pre) << " " << mixed;
+  }
+}
