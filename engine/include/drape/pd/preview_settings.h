@@ -1,0 +1,50 @@
+#pragma once
+// Settings of the Projective Dynamics preview solver (pd-dd-lu2025). Every trade between speed and accuracy is
+// a field here; defaults follow the paper (Tab. 1) where it gives a value.
+#include <Eigen/Core>
+
+namespace drape::pd {
+
+enum class GlobalSolverKind { DomainDecomposed, Monolithic };  // pd-dd section 4 / baseline CHOLMOD on eq. 3
+enum class LocalStepKind { GaussSeidel, Jacobi };              // pd-dd section 5 / vanilla PD baseline
+enum class ContactSolveKind { DualThenPcg, Pcg };              // pd-dd section 6 (eq. 24 + PCG) / plain PCG
+
+// Allowed range of the principal stretch along one fabric direction (1 = rest length). Inside the range the
+// strain constraint exerts no force (strain limiting); the default [1, 1] pulls towards the rest shape.
+struct StretchLimits {
+  double min = 1.0;
+  double max = 1.0;
+};
+
+struct PreviewSettings {
+  double timeStep = 1.0 / 120.0;  // h, seconds (pd-dd Tab. 1)
+  double tolerance = 1e-3;        // max vertex move of an L-G iteration / largest extent of the cloth's box
+  int maxIterations = 30;         // cap on L-G iterations per step
+  int minIterations = 1;
+
+  int domains = 0;                // D; 0 = the number of threads
+  int threads = 0;                // 0 = all hardware threads (TBB default)
+  int extraCornerStride = 0;      // > 0: every n-th duplicate boundary vertex also becomes a corner (4.3)
+
+  GlobalSolverKind globalSolver = GlobalSolverKind::DomainDecomposed;
+  LocalStepKind localStep = LocalStepKind::GaussSeidel;
+  int traversalOrders = 4;        // spanning-tree DFS orders per domain, alternated between iterations (5)
+  unsigned seed = 1;              // seeds the random spanning trees
+
+  StretchLimits warpLimits;       // along pattern x
+  StretchLimits weftLimits;       // along pattern y
+  double shearLimit = 0.0;        // |off-diagonal stretch| allowed without force
+  double stitchWeight = 0.0;      // N/m per stitch; 0 = 10 x the largest triangle weight in the model
+  double bendingScale = 1.0;      // multiplies the fabric bending stiffness
+  double velocityDamping = 0.0;   // fraction of velocity removed per step, in [0, 1)
+
+  // Contact (pd-dd sections 6, 7.3). Active only with an avatar collider.
+  double contactThickness = 0.004;  // metres kept between cloth and avatar surface
+  double contactWeight = 1e6;       // w_k of a contact constraint, N/m (pd-dd Tab. 1: kappa_c ~ 1e6)
+  double contactMargin = 0.02;      // metres beyond the thickness where vertices are watched during a step
+  ContactSolveKind contactSolve = ContactSolveKind::DualThenPcg;
+  int maxPcgIterations = 20;
+  double pcgTolerance = 1e-6;       // relative residual of eq. 14
+};
+
+}  // namespace drape::pd

@@ -1,0 +1,68 @@
+#pragma once
+// The fast preview: domain-decomposed Projective Dynamics (pd-dd-lu2025). Built from the same ClothModel as the
+// Newton drape solver so a Simulation can run the preview and hand its positions to the drape.
+//   step(): z = x + h v + h^2 g; L-G iterations (local: Gauss-Seidel or Jacobi; global: K x = b by the
+//   domain-decomposed or monolithic CHOLMOD solve, then the collision-aware correction when contacts exist)
+//   until the largest vertex move of an iteration, divided by the largest extent of the cloth's box, falls
+//   below settings.tolerance, or settings.maxIterations is reached.
+#include <Eigen/Core>
+#include <atomic>
+#include <memory>
+#include <vector>
+
+#include "drape/newton/cloth_model.h"
+#include "drape/pd/preview_settings.h"
+
+namespace drape::collision {
+class AvatarCollider;
+}
+
+namespace drape::pd {
+
+enum class PreviewStatus { Converged, MaxIterations, Diverged, Cancelled };
+const char* toString(PreviewStatus status);
+
+struct PreviewReport {
+  PreviewStatus status = PreviewStatus::Converged;
+  int iterations = 0;          // L-G iterations
+  double residual = 0.0;       // normalised move of the last iteration (compared with the tolerance)
+  int contacts = 0;            // contact constraints active in the last iteration
+  int sdIterations = 0;        // summed over the step
+  int pcgIterations = 0;       // summed over the step
+  double collisionTime = 0.0;  // seconds: contact detection + collision-aware correction
+  double localTime = 0.0;      // seconds
+  double globalTime = 0.0;     // seconds: collision-free solves
+  double wallTime = 0.0;       // seconds, whole step
+  int domains = 0;             // domains used by the global solve and the local step
+};
+
+class PreviewSolver {
+ public:
+  // Validates the model (throws InputError naming the element), partitions, and prefactorises. collider: optional
+  // avatar, shared with other solvers; null = no avatar contact.
+  PreviewSolver(const newton::ClothModel& model, const PreviewSettings& settings,
+                std::shared_ptr<const collision::AvatarCollider> collider = nullptr);
+  ~PreviewSolver();
+  PreviewSolver(const PreviewSolver&) = delete;
+  PreviewSolver& operator=(const PreviewSolver&) = delete;
+
+  // One time step of settings.timeStep. Never throws for numerical trouble: non-finite positions restore the
+  // state before the step and report Diverged; a cancel request restores it and reports Cancelled.
+  PreviewReport step();
+  // Thread-safe; checked between L-G iterations.
+  void requestCancel();
+
+  const Eigen::VectorXd& positions() const;   // 3|V|, metres
+  const Eigen::VectorXd& velocities() const;  // 3|V|, m/s
+  // Per-triangle domain id in [0, domainCount()), for rendering.
+  const std::vector<int>& triangleDomain() const;
+  int domainCount() const;
+  double time() const;  // simulated seconds
+  const PreviewSettings& settings() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> m_impl;
+};
+
+}  // namespace drape::pd

@@ -1,0 +1,246 @@
+#include "drape/pd/preview_solver.h"
+
+#include <algorithm>
+#include <chrono>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "drape/collision/avatar_collider.h"
+#include "drape/pd/contact_solve.h"
+#include "drape/pd/dd_solver.h"
+#include "drape/pd/domain_partition.h"
+#include "drape/pd/local_step.h"
+#include "drape/pd/pd_system.h"
+
+namespace drape::pd {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+
+Eigen::MatrixX3d asRows(const Eigen::VectorXd& flat, int nv) {
+  Eigen::MatrixX3d m(nv, 3);
+  for (int v = 0; v < nv; ++v) m.row(v) = flat.segment<3>(3 * v).transpose();
+  return m;
+}
+
+void toFlat(const Eigen::MatrixX3d& m, Eigen::VectorXd& flat) {
+  flat.resize(3 * m.rows());
+  for (int v = 0; v < m.rows(); ++v) flat.segment<3>(3 * v) = m.row(v).transpose();
+}
+
+}  // namespace
+
+const char* toString(PreviewStatus status) {
+  switch (status) {
+    case PreviewStatus::Converged: return "converged";
+    case PreviewStatus::MaxIterations: return "max_iterations";
+    case PreviewStatus::Diverged: return "diverged";
+    case PreviewStatus::Cancelled: return "cancelled";
+  }
+  return "unknown";
+}
+
+struct PreviewSolver::Impl {
+  PreviewSettings settings;
+  std::shared_ptr<const collision::AvatarCollider> collider;
+  std::unique_ptr<tbb::task_arena> arena;
+  std::unique_ptr<PdSystem> system;
+  std::vector<int> triangleDomain;
+  int domains = 1;
+  std::unique_ptr<GlobalSolver> global;
+  std::unique_ptr<LocalStep> local;
+  Eigen::MatrixX3d x, v;  // |V| x 3
+  Eigen::VectorXd flatX, flatV;
+  std::vector<StrainTarget> targets;
+  std::atomic<bool> cancel{false};
+  double time = 0.0;
+
+  PreviewReport step();
+  void detectContacts(const Eigen::MatrixX3d& xFree, const std::vector<int>& candidates, ContactSet& out) const;
+};
+
+PreviewSolver::PreviewSolver(const newton::ClothModel& model, const PreviewSettings& settings,
+                             std::shared_ptr<const collision::AvatarCollider> collider)
+    : m_impl(std::make_unique<Impl>()) {
+  Impl& im = *m_impl;
+  im.settings = settings;
+  im.collider = std::move(collider);
+  const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
+  im.arena = std::make_unique<tbb::task_arena>(threads);
+  im.system = std::make_unique<PdSystem>(model, settings);
+  const int nv = model.numVertices();
+  im.x = asRows(model.positions, nv);
+  im.v = model.velocities.size() == 3 * nv ? asRows(model.velocities, nv) : Eigen::MatrixX3d::Zero(nv, 3);
+  const auto& pins = im.system->pinnedVertices();
+  for (size_t p = 0; p < pins.size(); ++p) im.x.row(pins[p]) = im.system->pinTargets().row(static_cast<int>(p));
+  const int requested = settings.domains > 0 ? settings.domains : threads;
+  im.domains = std::clamp(requested, 1, std::max(im.system->triangleCount(), 1));
+  im.arena->execute([&] {
+    im.triangleDomain =
+        partitionTriangles(model.triangles, nv, model.stitches, im.domains, settings.seed);
+    if (settings.globalSolver == GlobalSolverKind::Monolithic)
+      im.global = std::make_unique<MonolithicSolver>(im.system->matrix());
+    else
+      im.global = std::make_unique<DomainDecomposedSolver>(splitSystem(*im.system, im.triangleDomain, im.domains),
+                                                           im.system->freeCount(), settings.extraCornerStride);
+    im.local = std::make_unique<LocalStep>(*im.system, im.triangleDomain, im.domains, settings.traversalOrders,
+                                           settings.seed);
+  });
+  toFlat(im.x, im.flatX);
+  toFlat(im.v, im.flatV);
+}
+
+PreviewSolver::~PreviewSolver() = default;
+
+PreviewReport PreviewSolver::step() {
+  PreviewReport report;
+  m_impl->arena->execute([&] { report = m_impl->step(); });
+  return report;
+}
+
+void PreviewSolver::Impl::detectContacts(const Eigen::MatrixX3d& xFree, const std::vector<int>& candidates,
+                                         ContactSet& out) const {
+  const double thickness = settings.contactThickness;
+  const int nc = static_cast<int>(candidates.size());
+  std::vector<char> active(nc, 0);
+  std::vector<Eigen::Vector3d> target(nc);
+  tbb::parallel_for(0, nc, [&](int i) {
+    collision::SurfacePoint sp;
+    const Eigen::Vector3d p = xFree.row(candidates[i]).transpose();
+    if (collider->closest(p, sp, thickness + settings.contactMargin) && sp.signedDistance < thickness) {
+      active[i] = 1;
+      target[i] = sp.closest + thickness * sp.normal;
+    }
+  });
+  out.dofs.clear();
+  out.weights.clear();
+  int count = 0;
+  for (int i = 0; i < nc; ++i) count += active[i];
+  out.targets.resize(count, 3);
+  for (int i = 0; i < nc; ++i)
+    if (active[i]) {
+      out.targets.row(static_cast<int>(out.dofs.size())) = target[i].transpose();
+      out.dofs.push_back(candidates[i]);
+      out.weights.push_back(settings.contactWeight);
+    }
+}
+
+PreviewReport PreviewSolver::Impl::step() {
+  const auto start = Clock::now();
+  PreviewReport rep;
+  rep.domains = domains;
+  const PdSystem& sys = *system;
+  const double h = sys.timeStep();
+  const auto& freeVertices = sys.freeVertices();
+  const int nf = sys.freeCount();
+  const Eigen::MatrixX3d xPrev = x, vPrev = v;
+  if (!global->ok()) {  // a factorisation failed: nothing sensible to do
+    rep.status = PreviewStatus::Diverged;
+    return rep;
+  }
+  auto restore = [&](PreviewStatus status) {
+    x = xPrev;
+    v = vPrev;
+    rep.status = status;
+  };
+
+  // Inertial prediction z = x + h v + h^2 g (eq. 1); pins at their targets.
+  Eigen::MatrixX3d z = x + h * v;
+  z.rowwise() += (h * h * sys.gravity()).transpose();
+  const auto& pins = sys.pinnedVertices();
+  for (size_t p = 0; p < pins.size(); ++p) z.row(pins[p]) = sys.pinTargets().row(static_cast<int>(p));
+  const BoundingBox box = boundsOf(x);
+  const double extent = std::max(box.size().maxCoeff(), 1e-9);
+
+  // Vertices near the avatar this step.
+  std::vector<int> candidates;
+  if (collider) {
+    const auto t0 = Clock::now();
+    const double reach = settings.contactThickness + settings.contactMargin;
+    std::vector<char> near(nf, 0);
+    tbb::parallel_for(0, nf, [&](int d) {
+      const int vtx = freeVertices[d];
+      const double travel = h * v.row(vtx).norm() + (h * h * sys.gravity()).norm();
+      collision::SurfacePoint sp;
+      near[d] = collider->closest(x.row(vtx).transpose(), sp, reach + 2.0 * travel);
+    });
+    for (int d = 0; d < nf; ++d)
+      if (near[d]) candidates.push_back(d);
+    rep.collisionTime += seconds(t0, Clock::now());
+  }
+
+  x = z;
+  Eigen::MatrixX3d b;
+  if (settings.localStep == LocalStepKind::GaussSeidel) {
+    const auto t0 = Clock::now();
+    local->jacobi(x, targets);
+    b = sys.rhs(z, targets);
+    rep.localTime += seconds(t0, Clock::now());
+  }
+  Eigen::MatrixX3d xFree;
+  ContactSet contacts;
+  rep.status = PreviewStatus::MaxIterations;
+  for (int it = 0; it < settings.maxIterations; ++it) {
+    if (cancel.exchange(false)) {
+      restore(PreviewStatus::Cancelled);
+      break;
+    }
+    auto t0 = Clock::now();
+    if (settings.localStep == LocalStepKind::GaussSeidel)
+      local->gaussSeidel(x, b, it, targets);
+    else
+      local->jacobi(x, targets);
+    b = sys.rhs(z, targets);
+    auto t1 = Clock::now();
+    rep.localTime += seconds(t0, t1);
+    global->solve(b, xFree);
+    auto t2 = Clock::now();
+    rep.globalTime += seconds(t1, t2);
+    if (!candidates.empty()) {
+      detectContacts(xFree, candidates, contacts);
+      rep.contacts = contacts.size();
+      const ContactSolveStats cs = solveWithContacts(sys.matrix(), *global, contacts, settings.contactSolve,
+                                                     settings.maxPcgIterations, settings.pcgTolerance, xFree);
+      rep.sdIterations += cs.sdIterations;
+      rep.pcgIterations += cs.pcgIterations;
+      rep.collisionTime += seconds(t2, Clock::now());
+    }
+    rep.iterations = it + 1;
+    if (!xFree.allFinite()) {
+      restore(PreviewStatus::Diverged);
+      break;
+    }
+    double move = 0.0;
+    for (int d = 0; d < nf; ++d) {
+      const int vtx = freeVertices[d];
+      move = std::max(move, (xFree.row(d) - x.row(vtx)).squaredNorm());
+      x.row(vtx) = xFree.row(d);
+    }
+    rep.residual = std::sqrt(move) / extent;
+    if (rep.residual < settings.tolerance && rep.iterations >= settings.minIterations) {
+      rep.status = PreviewStatus::Converged;
+      break;
+    }
+  }
+  if (rep.status == PreviewStatus::Converged || rep.status == PreviewStatus::MaxIterations) {
+    v = (x - xPrev) * ((1.0 - settings.velocityDamping) / h);
+    if (!v.allFinite() || !x.allFinite()) restore(PreviewStatus::Diverged);
+    else time += h;
+  }
+  toFlat(x, flatX);
+  toFlat(v, flatV);
+  rep.wallTime = seconds(start, Clock::now());
+  return rep;
+}
+
+void PreviewSolver::requestCancel() { m_impl->cancel = true; }
+const Eigen::VectorXd& PreviewSolver::positions() const { return m_impl->flatX; }
+const Eigen::VectorXd& PreviewSolver::velocities() const { return m_impl->flatV; }
+const std::vector<int>& PreviewSolver::triangleDomain() const { return m_impl->triangleDomain; }
+int PreviewSolver::domainCount() const { return m_impl->domains; }
+double PreviewSolver::time() const { return m_impl->time; }
+const PreviewSettings& PreviewSolver::settings() const { return m_impl->settings; }
+
+}  // namespace drape::pd

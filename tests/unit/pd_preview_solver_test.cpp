@@ -1,0 +1,211 @@
+// PreviewSolver (pd-dd sections 3, 5, 6): hanging cloth, Gauss-Seidel vs Jacobi, monolithic vs decomposed,
+// divergence handling, avatar contact.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "drape/collision/avatar_collider.h"
+#include "drape/core/input_error.h"
+#include "drape/pd/grid_cloth.h"
+#include "drape/pd/local_step.h"
+#include "drape/pd/preview_solver.h"
+
+namespace drape::pd {
+namespace {
+
+newton::ClothModel hangingCloth(int n = 24) {
+  GridClothOptions o;
+  o.nx = n;
+  o.ny = n;
+  return makeGridCloth(o);
+}
+
+// Runs `steps` steps and returns the total L-G iteration count.
+int totalIterations(const newton::ClothModel& model, PreviewSettings s, int steps, Eigen::VectorXd* finalX = nullptr) {
+  PreviewSolver solver(model, s);
+  int total = 0;
+  for (int i = 0; i < steps; ++i) {
+    const PreviewReport r = solver.step();
+    EXPECT_NE(r.status, PreviewStatus::Diverged);
+    total += r.iterations;
+  }
+  if (finalX) *finalX = solver.positions();
+  return total;
+}
+
+TEST(PdPreviewSolver, HangingClothFallsAndPinsHold) {
+  const newton::ClothModel model = hangingCloth();
+  PreviewSettings s;
+  s.domains = 4;
+  PreviewSolver solver(model, s);
+  EXPECT_EQ(solver.domainCount(), 4);
+  EXPECT_EQ(static_cast<int>(solver.triangleDomain().size()), model.triangles.rows());
+  PreviewReport r;
+  for (int i = 0; i < 10; ++i) r = solver.step();
+  EXPECT_NE(r.status, PreviewStatus::Diverged);
+  EXPECT_EQ(r.domains, 4);
+  const Eigen::VectorXd& x = solver.positions();
+  ASSERT_TRUE(x.allFinite());
+  for (int p : model.pinned) EXPECT_LT((x.segment<3>(3 * p) - model.positions.segment<3>(3 * p)).norm(), 1e-12);
+  // The bottom row fell: below its start, and moving downwards.
+  const int bottom = 12;
+  EXPECT_LT(x[3 * bottom + 1], model.positions[3 * bottom + 1] - 1e-3);
+  EXPECT_NEAR(solver.time(), 10 * s.timeStep, 1e-12);
+}
+
+TEST(PdPreviewSolver, DecomposedAndMonolithicGiveTheSameStep) {
+  const newton::ClothModel model = hangingCloth(16);
+  PreviewSettings s;
+  s.domains = 6;
+  s.maxIterations = 8;
+  s.tolerance = 0.0;  // fixed iteration count for both
+  s.localStep = LocalStepKind::Jacobi;
+  Eigen::VectorXd xd, xm;
+  totalIterations(model, s, 3, &xd);
+  s.globalSolver = GlobalSolverKind::Monolithic;
+  totalIterations(model, s, 3, &xm);
+  EXPECT_LT((xd - xm).norm(), 1e-9 * xm.norm());
+}
+
+// The brief asks for GS < Jacobi in L-G iterations; this implementation does NOT achieve it (see the printed
+// ratio and docs/BENCHMARKS.md). The test asserts what holds: both local steps converge to the same state.
+TEST(PdPreviewSolver, GaussSeidelAndJacobiConvergeToTheSameState) {
+  const newton::ClothModel model = hangingCloth(30);
+  PreviewSettings s;
+  s.domains = 4;
+  s.maxIterations = 200;
+  s.tolerance = 1e-4;
+  s.timeStep = 1.0 / 60.0;
+  s.localStep = LocalStepKind::GaussSeidel;
+  s.tolerance = 1e-7;
+  Eigen::VectorXd xg, xj;
+  const int gs = totalIterations(model, s, 5, &xg);
+  s.localStep = LocalStepKind::Jacobi;
+  const int jacobi = totalIterations(model, s, 5, &xj);
+  std::printf("[ PdPreviewSolver ] L-G iterations over 5 steps: Gauss-Seidel %d, Jacobi %d, ratio %.2f\n", gs,
+              jacobi, static_cast<double>(jacobi) / gs);
+  EXPECT_LT((xg - xj).cwiseAbs().maxCoeff(), 1e-4);
+  EXPECT_LT(gs, 5 * s.maxIterations);  // both converged, neither hit the cap every step
+  EXPECT_LT(jacobi, 5 * s.maxIterations);
+}
+
+TEST(PdPreviewSolver, TraversalOrdersAreSpanningAndStartAtPins) {
+  const newton::ClothModel model = hangingCloth(12);
+  PreviewSettings s;
+  PdSystem sys(model, s);
+  std::vector<int> part(model.triangles.rows(), 0);
+  LocalStep local(sys, part, 1, 3, 5);
+  for (int o = 0; o < 3; ++o) {
+    std::vector<int> order = local.order(0, o);
+    ASSERT_EQ(static_cast<int>(order.size()), model.triangles.rows());
+    // Starts at a triangle holding a pinned vertex.
+    bool pinned = false;
+    for (int c = 0; c < 3; ++c)
+      for (int p : model.pinned) pinned |= model.triangles(order[0], c) == p;
+    EXPECT_TRUE(pinned);
+    std::sort(order.begin(), order.end());
+    for (int i = 0; i < static_cast<int>(order.size()); ++i) EXPECT_EQ(order[i], i);
+  }
+  EXPECT_NE(local.order(0, 0), local.order(0, 1));
+}
+
+TEST(PdPreviewSolver, NonFiniteStateIsRestoredAndReportedDiverged) {
+  newton::ClothModel model = hangingCloth(8);
+  model.velocities = Eigen::VectorXd::Zero(model.positions.size());
+  model.velocities[3 * 5] = std::nan("");
+  PreviewSolver solver(model, PreviewSettings{});
+  const Eigen::VectorXd before = solver.positions();
+  const PreviewReport r = solver.step();
+  EXPECT_EQ(r.status, PreviewStatus::Diverged);
+  EXPECT_EQ(solver.positions(), before);
+  EXPECT_EQ(solver.time(), 0.0);
+}
+
+TEST(PdPreviewSolver, CancelRestoresTheStep) {
+  const newton::ClothModel model = hangingCloth(8);
+  PreviewSolver solver(model, PreviewSettings{});
+  const Eigen::VectorXd before = solver.positions();
+  solver.requestCancel();
+  EXPECT_EQ(solver.step().status, PreviewStatus::Cancelled);
+  EXPECT_EQ(solver.positions(), before);
+  EXPECT_NE(solver.step().status, PreviewStatus::Cancelled);
+}
+
+TEST(PdPreviewSolver, BadModelThrowsInputError) {
+  newton::ClothModel model = hangingCloth(4);
+  model.triangles(2, 1) = 99;
+  EXPECT_THROW(PreviewSolver(model, PreviewSettings{}), InputError);
+}
+
+// A coarse closed sphere (octahedron subdivided and projected), outward counter-clockwise.
+TriangleMesh sphereMesh(double radius, int levels) {
+  std::vector<Eigen::Vector3d> v = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  std::vector<Eigen::Vector3i> f = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (int l = 0; l < levels; ++l) {
+    std::vector<Eigen::Vector3i> nf;
+    std::map<std::pair<int, int>, int> mid;
+    auto midpoint = [&](int a, int b) {
+      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      v.push_back((v[a] + v[b]).normalized());
+      return mid[key] = static_cast<int>(v.size()) - 1;
+    };
+    for (const auto& t : f) {
+      const int a = midpoint(t[0], t[1]), b = midpoint(t[1], t[2]), c = midpoint(t[2], t[0]);
+      nf.push_back({t[0], a, c});
+      nf.push_back({a, t[1], b});
+      nf.push_back({c, b, t[2]});
+      nf.push_back({a, b, c});
+    }
+    f = nf;
+  }
+  TriangleMesh m;
+  m.vertices.resize(static_cast<int>(v.size()), 3);
+  for (size_t i = 0; i < v.size(); ++i) m.vertices.row(static_cast<int>(i)) = radius * v[i].normalized().transpose();
+  m.triangles.resize(static_cast<int>(f.size()), 3);
+  for (size_t i = 0; i < f.size(); ++i) m.triangles.row(static_cast<int>(i)) = f[i].transpose();
+  return m;
+}
+
+TEST(PdPreviewSolver, ClothDropsOnSphereWithoutPenetration) {
+  GridClothOptions o;
+  o.nx = 25;
+  o.ny = 25;
+  o.horizontal = true;
+  o.elevation = 0.33;
+  o.pinTopCorners = false;
+  const newton::ClothModel model = makeGridCloth(o);
+  const double radius = 0.3;
+  auto collider = std::make_shared<collision::AvatarCollider>(sphereMesh(radius, 4));
+  for (ContactSolveKind kind : {ContactSolveKind::DualThenPcg, ContactSolveKind::Pcg}) {
+    PreviewSettings s;
+    s.domains = 4;
+    s.contactSolve = kind;
+    PreviewSolver solver(model, s, collider);
+    int contacts = 0, pcg = 0;
+    for (int i = 0; i < 40; ++i) {
+      const PreviewReport r = solver.step();
+      ASSERT_NE(r.status, PreviewStatus::Diverged);
+      contacts = std::max(contacts, r.contacts);
+      pcg += r.pcgIterations;
+    }
+    const Eigen::VectorXd& x = solver.positions();
+    double minDistance = 1e9;
+    for (int v = 0; v < model.numVertices(); ++v) minDistance = std::min(minDistance, collider->signedDistance(x.segment<3>(3 * v)));
+    std::printf("[ PdPreviewSolver ] %s: max contacts %d, PCG iterations %d, min signed distance %.4f m\n",
+                kind == ContactSolveKind::DualThenPcg ? "dual+PCG" : "PCG", contacts, pcg, minDistance);
+    EXPECT_GT(contacts, 10);
+    // No vertex inside the sphere beyond the contact thickness.
+    EXPECT_GT(minDistance, -s.contactThickness);
+    // The cloth centre rests on the sphere top (radius + thickness), the rim hangs lower.
+    const int centre = 12 * 25 + 12;
+    EXPECT_NEAR(x[3 * centre + 1], radius + s.contactThickness, 0.01);
+    EXPECT_LT(x[1], radius);
+  }
+}
+
+}  // namespace
+}  // namespace drape::pd
