@@ -32,11 +32,16 @@ std::string usageText() {
   return R"(Usage:
   drape [SCENE.json]                      open the desktop application (default scene if none given)
   drape --info FILE [scene options]       describe a pattern, scene or avatar file
-  drape --simulate SCENE -o OUT.(obj|glb|ply|stl) [--solver none|drape] [--stats STATS.json] [--max-sim-time S]
-                                          build the garment, run the solver, write the garment
+  drape --simulate SCENE -o OUT.(obj|glb|ply|stl) [--solver none|preview|drape|full] [--stats STATS.json] [--max-sim-time S]
+                                          [--png OUT.png [--view V] [--size WxH] [--mode M]]
+                                          build the garment, run the solver, write the garment (and a picture)
   drape --render SCENE -o OUT.png [--view front|back|left|right|three-quarter|all] [--size WxH]
-                                          [--mode shaded|wireframe|strain|domains|contacts] [--simulate none]
+                                          [--mode shaded|wireframe|strain|domains|contacts] [--simulate none|preview|drape|full]
                                           render a PNG headless (no display server needed)
+  drape --bench SCENE [--sweep KEY=V1,V2,...]... [-o REPORT.json] [--max-sim-time S]
+                                          speed/accuracy trade: each sweep value against a tight reference drape
+  drape --make-avatar MEASUREMENTS.(yaml|json) -o AVATAR.(obj|glb)
+                                          a smooth watertight mannequin from body measurements (cm)
   drape --list-settings                   every setting with its default, unit and meaning
   drape --list-fabrics                    the fabric presets
   drape --help | --version
@@ -48,8 +53,11 @@ Scene options (every headless mode):
   --fabric PRESET          fabric of every panel (see --list-fabrics)
   --set KEY=VALUE          override any setting by its dotted name (repeatable; see --list-settings)
 
-Solvers: --solver drape (the default, or the scene's solver.stage) runs the Backward-Euler Newton drape until the
-garment is at rest or solver.max_sim_time; --solver none writes the placed garment. The preview is not available yet.
+Solvers (--solver for --simulate and --bench, --simulate for --render; default: the scene's solver.stage):
+  none     the placed garment
+  preview  the fast PD-DD preview until it settles
+  drape    the Backward-Euler Newton drape from the placed garment until at rest or solver.max_sim_time
+  full     the preview, then the Newton drape from the preview state
 Exit status: 0 on success, 1 on bad input or failure (one line on stderr names the file and the problem).
 )";
 }
@@ -80,6 +88,14 @@ CliOptions parseCommandLine(int argc, char** argv) {
     } else if (a == "--info") {
       setMode(Mode::Info, a);
       o.scene.input = value(i, a);
+    } else if (a == "--make-avatar") {
+      setMode(Mode::MakeAvatar, a);
+      o.scene.input = value(i, a);
+    } else if (a == "--bench") {
+      setMode(Mode::Bench, a);
+      o.scene.input = value(i, a);
+    } else if (a == "--sweep") {
+      o.sweeps.push_back(value(i, a));
     } else if (a == "--render") {
       setMode(Mode::Render, a);
       o.scene.input = value(i, a);
@@ -94,6 +110,8 @@ CliOptions parseCommandLine(int argc, char** argv) {
       }
     } else if (a == "-o" || a == "--output") {
       o.output = value(i, a);
+    } else if (a == "--png") {
+      o.png = value(i, a);
     } else if (a == "--stats") {
       o.stats = value(i, a);
     } else if (a == "--solver") {
@@ -142,8 +160,11 @@ CliOptions parseCommandLine(int argc, char** argv) {
   } else if (!positional.empty()) {
     throw InputError("unexpected argument '" + positional[0] + "' (see drape --help)");
   }
-  if ((o.mode == Mode::Simulate || o.mode == Mode::Render) && o.output.empty())
-    throw InputError(std::string(o.mode == Mode::Render ? "--render" : "--simulate") + ": missing -o OUTPUT");
+  if ((o.mode == Mode::Simulate || o.mode == Mode::Render || o.mode == Mode::MakeAvatar) && o.output.empty())
+    throw InputError(std::string(o.mode == Mode::Render     ? "--render"
+                                 : o.mode == Mode::Simulate ? "--simulate"
+                                                            : "--make-avatar") +
+                     ": missing -o OUTPUT");
   return o;
 }
 

@@ -8,13 +8,14 @@
 
 namespace drape::app {
 
-enum class Mode { Gui, Help, Version, Info, Simulate, Render, ListSettings, ListFabrics };
+enum class Mode { Gui, Help, Version, Info, Simulate, Render, Bench, MakeAvatar, ListSettings, ListFabrics };
 
 struct CliOptions {
   Mode mode = Mode::Gui;
   SceneRequest scene;   // input file, --avatar, --avatar-units, --fabric, --set
   std::string output;   // -o
   std::string stats;    // --stats
+  std::string png;      // --png (simulate: also render the final state)
   std::string solver;                 // --solver none|preview|drape|full (empty: the scene's solver.stage)
   std::string simulateStage = "none";  // --simulate value in --render mode (renders the placed garment by default)
   std::string view = "three-quarter";  // --view
@@ -22,6 +23,7 @@ struct CliOptions {
   std::string renderMode = "shaded";   // --mode
   int width = 1024, height = 768;      // --size WxH
   double maxSimTime = -1.0;            // --max-sim-time
+  std::vector<std::string> sweeps;     // --sweep KEY=V1,V2 (bench)
 };
 
 // Parses argv; throws InputError with a one-line message for anything malformed.

@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
       case Mode::Info: return runInfo(options, std::cout);
       case Mode::Simulate: return runSimulate(options, std::cout);
       case Mode::Render: return runRender(options, std::cout);
+      case Mode::Bench: return runBench(options, std::cout);
+      case Mode::MakeAvatar: return runMakeAvatar(options, std::cout);
       case Mode::Gui: return runGui(argc, argv, options);
     }
   } catch (const drape::InputError& e) {

@@ -34,13 +34,22 @@ Snapshot stageSnapshot(Scene scene, std::ostream& out) {
 
 }  // namespace
 
+void checkPngPath(const std::filesystem::path& output, const std::string& option) {
+  if (output.extension() != ".png") throw InputError(output.string() + ": the output of " + option + " must be a .png file");
+}
+
 int runRender(const CliOptions& options, std::ostream& out) {
-  const std::filesystem::path output = options.output;
-  if (output.extension() != ".png") throw InputError(output.string() + ": the output of --render must be a .png file");
+  checkPngPath(options.output, "--render");
   Scene scene = loadScene(requestWithStage(options));
   const std::string cameraView = scene.settings.text("camera.view");
   const double fov = scene.settings.number("camera.fov_deg");
   const Snapshot snapshot = stageSnapshot(std::move(scene), out);
+  renderToPng(snapshot, options, cameraView, fov, options.output, out);
+  return 0;
+}
+
+void renderToPng(const Snapshot& snapshot, const CliOptions& options, const std::string& cameraView, double fov,
+                 const std::filesystem::path& output, std::ostream& out) {
 
   render::RenderOptions ro;
   ro.mode = *render::parseDisplayMode(options.renderMode);
@@ -67,7 +76,6 @@ int runRender(const CliOptions& options, std::ostream& out) {
   }
   render::writePng(output, image);
   out << "wrote " << output.string() << " (" << image.width << "x" << image.height << ")\n";
-  return 0;
 }
 
 }  // namespace drape::app

@@ -2,7 +2,6 @@
 
 #include <sstream>
 
-#include "drape/core/input_error.h"
 
 namespace drape::app {
 
@@ -10,9 +9,6 @@ SceneRequest requestWithStage(const CliOptions& options) {
   SceneRequest request = options.scene;
   const std::string& stage = options.mode == Mode::Render ? options.simulateStage : options.solver;
   if (!stage.empty()) {
-    if (stage == "preview" || stage == "full")
-      throw InputError("--" + std::string(options.mode == Mode::Render ? "simulate" : "solver") + " " + stage +
-                       ": the preview solver is not available yet (use none or drape)");
     request.overrides.insert(request.overrides.begin(), {"solver.stage", stage});
   }
   if (options.maxSimTime > 0) {

@@ -11,18 +11,26 @@
 #include "drape/io/mesh_export.h"
 #include "drape/scene/pins.h"
 #include "drape/sim/simulation.h"
+#include "drape/sim/snapshot_builder.h"
 #include "scene_request.h"
 
 namespace drape::app {
 namespace {
 
 nlohmann::json stepRecord(const StepReport& r) {
-  return {{"time", r.time},         {"h", r.h},
-          {"status", toString(r.status)}, {"newton_iterations", r.iterations},
+  nlohmann::json j = {{"stage", r.stage}, {"time", r.time},         {"h", r.h},
+          {"status", toString(r.status)}, {"iterations", r.iterations},
           {"cg_iterations", r.cgIterations}, {"splits", r.splits},
           {"residual", r.residual}, {"kinetic_energy_p99", r.kineticEnergy},
           {"contacts", r.contacts}, {"max_strain", r.maxStrain},
           {"wall_time_s", r.wallTime}};
+  if (r.stage == "preview") {
+    j["domains"] = r.domains;
+    j["collision_time_s"] = r.collisionTime;
+    j["local_time_s"] = r.localTime;
+    j["global_time_s"] = r.globalTime;
+  }
+  return j;
 }
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
@@ -33,7 +41,10 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 int runSimulate(const CliOptions& options, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
+  if (!options.png.empty()) checkPngPath(options.png, "--png");
   Scene scene = loadScene(requestWithStage(options));
+  const std::string cameraView = scene.settings.text("camera.view");
+  const double fov = scene.settings.number("camera.fov_deg");
   const std::string stage = scene.settings.text("solver.stage");
   nlohmann::json stats;
   auto warnings = scene.diagnostics.warnings();
@@ -44,6 +55,8 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
         buildGarment(scene.pattern, MeshingOptions{scene.settings.number("mesh.target_edge_length")}, &diagnostics);
     const auto pinned = resolvePins(scene, garment);
     exportGarment(garment, garment.positions, options.output);
+    if (!options.png.empty())
+      renderToPng(makeSnapshot(scene, garment, garment.positions), options, cameraView, fov, options.png, out);
     warnings.insert(warnings.end(), diagnostics.warnings().begin(), diagnostics.warnings().end());
     stats = {{"status", "Placed"}, {"steps", 0}, {"sim_time_s", 0.0}, {"terms", nlohmann::json::array()},
              {"per_step", nlohmann::json::array()}, {"vertices", garment.vertexCount()},
@@ -58,12 +71,19 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
     for (const auto& t : terms) out << " " << t;
     out << "\n";
     nlohmann::json perStep = nlohmann::json::array();
+    int domains = 0;
+    std::string lastStage = simulation.stage();
     std::string status = "MaxSimTime";
     double nextPrint = 0.0;
     StepReport last;
     while (!simulation.finished()) {
       last = simulation.step();
       perStep.push_back(stepRecord(last));
+      domains = std::max(domains, last.domains);
+      if (simulation.stage() != lastStage) {
+        out << "  stage " << lastStage << " -> " << simulation.stage() << " at t=" << last.time << " s\n";
+        lastStage = simulation.stage();
+      }
       if (last.status == StepStatus::Diverged || last.status == StepStatus::Cancelled) {
         status = toString(last.status);
         break;
@@ -71,19 +91,20 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
       if (last.atRest) status = "AtRest";
       if (last.time >= nextPrint) {
         char line[200];
-        std::snprintf(line, sizeof line, "  t=%.3f s  h=%.2e  newton=%d  cg=%d  residual=%.2e  KE99=%.2e  contacts=%d\n",
-                      last.time, last.h, last.iterations, last.cgIterations, last.residual, last.kineticEnergy,
-                      last.contacts);
+        std::snprintf(line, sizeof line, "  %s t=%.3f s  h=%.2e  iterations=%d  cg=%d  residual=%.2e  KE=%.2e  contacts=%d\n",
+                      last.stage.c_str(), last.time, last.h, last.iterations, last.cgIterations, last.residual,
+                      last.kineticEnergy, last.contacts);
         out << line << std::flush;
         nextPrint = last.time + 0.1;
       }
     }
     exportGarment(simulation.garment(), simulation.positions(), options.output);
+    if (!options.png.empty()) renderToPng(simulation.snapshot(), options, cameraView, fov, options.png, out);
     stats = {{"status", status}, {"steps", simulation.steps()}, {"sim_time_s", simulation.time()}, {"terms", terms},
              {"per_step", perStep}, {"vertices", simulation.garment().vertexCount()},
              {"triangles", simulation.garment().triangleCount()}, {"pinned_vertices", simulation.pinned().size()},
-             {"final", stepRecord(last)}};
-    out << "drape: " << status << " after " << simulation.steps() << " steps, " << simulation.time()
+             {"final", stepRecord(last)}, {"domains", domains}};
+    out << simulation.stage() << ": " << status << " after " << simulation.steps() << " steps, " << simulation.time()
         << " s simulated; wrote " << options.output << "\n";
     if (status == "Diverged")
       out << "drape: the solver diverged at t=" << last.time << " s; the last good state was written\n";

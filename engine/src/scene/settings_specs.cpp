@@ -23,11 +23,26 @@ const std::vector<SettingSpec>& Settings::specs() {
        1.0},
       {"sim.gravity", T::Number, "-9.81", "m/s^2", "gravity along y", -1000, 1000},
       // Simulation stages and limits
-      {"solver.stage", T::Choice, "drape", "", "what --simulate runs: none (placed garment) or drape (Newton)", -1e300,
-       1e300, {"none", "drape"}},
+      {"solver.stage", T::Choice, "drape", "", "what --simulate runs: none (placed garment), preview (PD-DD), drape "
+       "(Newton from the placed garment) or full (preview, then the drape from the preview state)", -1e300, 1e300,
+       {"none", "preview", "drape", "full"}},
       {"solver.max_sim_time", T::Number, "3", "s", "simulated time limit when the garment does not come to rest", 1e-4,
        1e4},
       {"solver.max_steps", T::Integer, "100000", "", "step limit", 1, 1e9},
+      // PD-DD preview (pd-dd-lu2025; defaults from the paper)
+      {"solver.preview.time_step", T::Number, "0.008333333333333333", "s", "preview time step h", 1e-5, 0.1},
+      {"solver.preview.tolerance", T::Number, "1e-3", "", "L-G convergence: max move / scene size", 1e-9, 1},
+      {"solver.preview.max_iterations", T::Integer, "30", "", "cap on L-G iterations per step", 1, 10000},
+      {"solver.preview.domains", T::Integer, "0", "", "METIS domains D (0: the thread count)", 0, 4096},
+      {"solver.preview.local_step", T::Choice, "gauss_seidel", "", "local step", -1e300, 1e300,
+       {"gauss_seidel", "jacobi"}},
+      {"solver.preview.global_solver", T::Choice, "domain_decomposed", "", "global solve", -1e300, 1e300,
+       {"domain_decomposed", "monolithic"}},
+      {"solver.preview.contact_solve", T::Choice, "dual_then_pcg", "", "collision-aware global solve", -1e300, 1e300,
+       {"dual_then_pcg", "pcg"}},
+      {"solver.preview.max_time", T::Number, "1", "s", "longest preview stage (full pipeline)", 1e-3, 1e4},
+      {"solver.preview.rest_speed", T::Number, "0.01", "m/s",
+       "the preview is settled when the 99th percentile of vertex speeds falls below this", 0, 100},
       // Newton drape (newton-drape-pizana; defaults from the paper)
       {"solver.newton.tolerance", T::Number, "1e-3", "kg m/s", "Newton tolerance tau_n on the momentum residual", 1e-12,
        1e3},

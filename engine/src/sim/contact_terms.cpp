@@ -9,11 +9,11 @@
 
 namespace drape {
 
-ContactTerms makeContactTerms(const Scene& scene, const Garment& garment, const TriangleMesh& colliderMesh) {
+ContactTerms makeContactTerms(const Scene& scene, const Garment& garment,
+                              std::shared_ptr<const collision::AvatarCollider> collider) {
   ContactTerms terms;
   terms.thickness = contactThickness(scene);
-  if (colliderMesh.triangleCount() > 0)
-    terms.collider = std::make_shared<const collision::AvatarCollider>(colliderMesh);
+  terms.collider = std::move(collider);
   collision::ContactSetup setup;
   setup.avatar = terms.collider;
   setup.avatarContact.stiffness = scene.settings.number("contact.stiffness");

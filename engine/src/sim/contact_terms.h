@@ -18,7 +18,9 @@ struct ContactTerms {
   std::vector<std::unique_ptr<newton::Energy>> energies;      // handed over to the solver
 };
 
-ContactTerms makeContactTerms(const Scene& scene, const Garment& garment, const TriangleMesh& colliderMesh);
+// collider: the scene's merged collider (null when it has none), shared with the preview solver.
+ContactTerms makeContactTerms(const Scene& scene, const Garment& garment,
+                              std::shared_ptr<const collision::AvatarCollider> collider);
 
 // |V| mask, 1 where the garment vertex (x flat, 3|V|) is within the contact thickness of a collider.
 Eigen::VectorXi contactMask(const ContactTerms& terms, const Eigen::VectorXd& x);

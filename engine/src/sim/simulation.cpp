@@ -5,6 +5,8 @@
 
 #include "drape/garment/garment_builder.h"
 #include "drape/geometry/strain.h"
+#include "drape/newton/body_forces.h"
+#include "drape/pd/preview_solver.h"
 #include "drape/scene/pins.h"
 #include "drape/sim/snapshot_builder.h"
 #include "sim/cloth_model_builder.h"
@@ -23,20 +25,50 @@ const char* toString(StepStatus status) {
 }
 
 struct Simulation::Solver {
-  std::unique_ptr<newton::NewtonSolver> newton;
-  ContactTerms contact;
+  newton::ClothModel model;
+  std::shared_ptr<const collision::AvatarCollider> collider;
+  std::unique_ptr<pd::PreviewSolver> preview;  // while the stage is "preview"
+  std::unique_ptr<newton::NewtonSolver> newton;  // once the stage is "drape"
+  ContactTerms contact;                          // the drape's contact terms (energies moved into newton)
+  Eigen::VectorXd masses;                        // |V| lumped, kg
+  double previewTime = 0.0;                      // simulated seconds spent in the preview
 };
 
 namespace {
 
-StepStatus fromNewton(newton::NewtonStatus s) {
+template <class Status>
+StepStatus toStepStatus(Status s) {
   switch (s) {
-    case newton::NewtonStatus::Converged: return StepStatus::Converged;
-    case newton::NewtonStatus::MaxIterations: return StepStatus::MaxIterations;
-    case newton::NewtonStatus::Diverged: return StepStatus::Diverged;
-    case newton::NewtonStatus::Cancelled: return StepStatus::Cancelled;
+    case Status::Converged: return StepStatus::Converged;
+    case Status::MaxIterations: return StepStatus::MaxIterations;
+    case Status::Diverged: return StepStatus::Diverged;
+    case Status::Cancelled: return StepStatus::Cancelled;
   }
   return StepStatus::Diverged;
+}
+
+pd::PreviewSettings previewSettingsFrom(const Scene& scene) {
+  const Settings& s = scene.settings;
+  pd::PreviewSettings p;
+  p.timeStep = s.number("solver.preview.time_step");
+  p.tolerance = s.number("solver.preview.tolerance");
+  p.maxIterations = s.integer("solver.preview.max_iterations");
+  p.domains = s.integer("solver.preview.domains");
+  p.localStep = s.text("solver.preview.local_step") == "jacobi" ? pd::LocalStepKind::Jacobi : pd::LocalStepKind::GaussSeidel;
+  p.globalSolver = s.text("solver.preview.global_solver") == "monolithic" ? pd::GlobalSolverKind::Monolithic
+                                                                          : pd::GlobalSolverKind::DomainDecomposed;
+  p.contactSolve = s.text("solver.preview.contact_solve") == "pcg" ? pd::ContactSolveKind::Pcg
+                                                                   : pd::ContactSolveKind::DualThenPcg;
+  p.contactThickness = contactThickness(scene);
+  return p;
+}
+
+// 99th percentile of values (copied).
+double percentile99(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const size_t k = std::min(values.size() - 1, static_cast<size_t>(0.99 * (values.size() - 1)));
+  std::nth_element(values.begin(), values.begin() + k, values.end());
+  return values[k];
 }
 
 }  // namespace
@@ -48,49 +80,123 @@ Simulation::Simulation(Scene scene) : m_scene(std::move(scene)) {
   m_pinned = resolvePins(m_scene, m_garment);
   m_colliderMesh = mergedColliders(m_scene);
   m_solver = std::make_unique<Solver>();
-  m_solver->contact = makeContactTerms(m_scene, m_garment, m_colliderMesh);
-  m_solver->newton = std::make_unique<newton::NewtonSolver>(buildClothModel(m_scene, m_garment, m_pinned),
-                                                            newtonSettingsFrom(m_scene.settings),
-                                                            std::move(m_solver->contact.energies));
+  m_solver->model = buildClothModel(m_scene, m_garment, m_pinned);
+  m_solver->masses = newton::lumpedVertexMasses(m_solver->model);
+  if (m_colliderMesh.triangleCount() > 0)
+    m_solver->collider = std::make_shared<const collision::AvatarCollider>(m_colliderMesh);
+  const std::string& stage = m_scene.settings.text("solver.stage");
+  if (stage == "preview" || stage == "full")
+    m_solver->preview =
+        std::make_unique<pd::PreviewSolver>(m_solver->model, previewSettingsFrom(m_scene), m_solver->collider);
+  else
+    startDrape();
 }
 
 Simulation::~Simulation() = default;
 
-std::vector<std::string> Simulation::terms() const { return m_solver->newton->energyNames(); }
+void Simulation::startDrape() {
+  newton::ClothModel model = m_solver->model;
+  if (m_solver->preview) {
+    model.positions = m_solver->preview->positions();  // warm start; velocities reset
+    m_solver->previewTime = m_solver->preview->time();
+    m_solver->preview.reset();
+  }
+  m_solver->contact = makeContactTerms(m_scene, m_garment, m_solver->collider);
+  m_solver->newton = std::make_unique<newton::NewtonSolver>(std::move(model), newtonSettingsFrom(m_scene.settings),
+                                                            std::move(m_solver->contact.energies));
+  m_atRest = false;
+}
 
-double Simulation::time() const { return m_solver->newton->time(); }
+std::string Simulation::stage() const { return m_solver->preview ? "preview" : "drape"; }
+
+std::vector<std::string> Simulation::terms() const {
+  if (m_solver->newton) return m_solver->newton->energyNames();
+  std::vector<std::string> t = {"pd_strain", "pd_bending", "gravity"};
+  if (!m_solver->model.stitches.empty()) t.push_back("pd_stitches");
+  if (!m_solver->model.pinned.empty()) t.push_back("pins");
+  if (m_solver->collider) t.push_back("pd_avatar_contact");
+  return t;
+}
+
+double Simulation::time() const {
+  return m_solver->preview ? m_solver->preview->time() : m_solver->previewTime + m_solver->newton->time();
+}
 
 Eigen::MatrixX3d Simulation::positions() const {
-  const Eigen::VectorXd& x = m_solver->newton->positions();
+  const Eigen::VectorXd& x = m_solver->preview ? m_solver->preview->positions() : m_solver->newton->positions();
   Eigen::MatrixX3d p(m_garment.vertexCount(), 3);
   for (int v = 0; v < m_garment.vertexCount(); ++v) p.row(v) = x.segment<3>(3 * v).transpose();
   return p;
 }
 
-void Simulation::requestCancel() { m_solver->newton->requestCancel(); }
+void Simulation::requestCancel() {
+  if (m_solver->preview) m_solver->preview->requestCancel();
+  if (m_solver->newton) m_solver->newton->requestCancel();
+}
 
 bool Simulation::finished() const {
+  const bool previewOnly = m_scene.settings.text("solver.stage") == "preview";
+  if (m_solver->preview && !previewOnly) return false;  // the drape follows
   return m_atRest || time() >= m_scene.settings.number("solver.max_sim_time") - 1e-12 ||
          m_steps >= m_scene.settings.integer("solver.max_steps");
 }
 
 StepReport Simulation::step() {
   const auto start = std::chrono::steady_clock::now();
-  const newton::NewtonStepReport r = m_solver->newton->step();
-  ++m_steps;
-  m_atRest = r.atRest;
   StepReport report;
-  report.status = fromNewton(r.status);
-  report.stage = "drape";
-  report.time = r.time;
-  report.h = r.h;
-  report.iterations = r.newtonIterations;
-  report.cgIterations = r.cgIterations;
-  report.splits = r.splits;
-  report.residual = r.residual;
-  report.kineticEnergy = r.kineticPercentile;
-  report.atRest = r.atRest;
-  report.contacts = countContacts(m_solver->contact, m_solver->newton->positions());
+  if (m_solver->preview) {
+    pd::PreviewSolver& preview = *m_solver->preview;
+    const pd::PreviewReport r = preview.step();
+    report.status = toStepStatus(r.status);
+    report.stage = "preview";
+    report.h = preview.settings().timeStep;
+    report.iterations = r.iterations;
+    report.cgIterations = r.pcgIterations;
+    report.residual = r.residual;
+    report.contacts = r.contacts;
+    report.domains = r.domains;
+    report.collisionTime = r.collisionTime;
+    report.localTime = r.localTime;
+    report.globalTime = r.globalTime;
+    const Eigen::VectorXd& v = preview.velocities();
+    std::vector<double> energies(m_solver->masses.size()), speeds(m_solver->masses.size());
+    for (Eigen::Index i = 0; i < m_solver->masses.size(); ++i) {
+      speeds[i] = v.segment<3>(3 * i).norm();
+      energies[i] = 0.5 * m_solver->masses[i] * speeds[i] * speeds[i];
+    }
+    report.kineticEnergy = percentile99(std::move(energies));
+    // Settled: vertex speeds below the threshold for a 0.1 s window (as the drape's early stop).
+    if (percentile99(std::move(speeds)) < m_scene.settings.number("solver.preview.rest_speed")) {
+      if (m_restSince < 0) m_restSince = preview.time();
+    } else {
+      m_restSince = -1.0;
+    }
+    const bool settled = m_restSince >= 0 && preview.time() - m_restSince >= 0.1;
+    const bool timeUp = preview.time() >= m_scene.settings.number("solver.preview.max_time") - 1e-12;
+    report.time = preview.time();
+    ++m_steps;
+    if (m_scene.settings.text("solver.stage") == "preview") {
+      m_atRest = settled;
+      report.atRest = settled;
+    } else if ((settled || timeUp) && report.status != StepStatus::Diverged) {
+      startDrape();
+    }
+  } else {
+    const newton::NewtonStepReport r = m_solver->newton->step();
+    ++m_steps;
+    m_atRest = r.atRest;
+    report.status = toStepStatus(r.status);
+    report.stage = "drape";
+    report.time = m_solver->previewTime + r.time;
+    report.h = r.h;
+    report.iterations = r.newtonIterations;
+    report.cgIterations = r.cgIterations;
+    report.splits = r.splits;
+    report.residual = r.residual;
+    report.kineticEnergy = r.kineticPercentile;
+    report.atRest = r.atRest;
+    report.contacts = countContacts(m_solver->contact, m_solver->newton->positions());
+  }
   const Eigen::VectorXd stretch = triangleStretch(m_garment.rest, positions(), m_garment.triangles);
   report.maxStrain = stretch.size() ? stretch.maxCoeff() : 0.0;
   report.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -99,9 +205,20 @@ StepReport Simulation::step() {
 
 Snapshot Simulation::snapshot() const {
   Snapshot s = makeSnapshot(m_scene, m_garment, positions());
-  s.vertexContact = contactMask(m_solver->contact, m_solver->newton->positions());
+  if (m_solver->preview) {
+    const auto& domains = m_solver->preview->triangleDomain();
+    s.triangleDomain = Eigen::Map<const Eigen::VectorXi>(domains.data(), static_cast<Eigen::Index>(domains.size()));
+    Eigen::VectorXd x(3 * m_garment.vertexCount());
+    for (int v = 0; v < m_garment.vertexCount(); ++v) x.segment<3>(3 * v) = s.positions.row(v).transpose();
+    ContactTerms probe;
+    probe.collider = m_solver->collider;
+    probe.thickness = contactThickness(m_scene);
+    s.vertexContact = contactMask(probe, x);
+  } else {
+    s.vertexContact = contactMask(m_solver->contact, m_solver->newton->positions());
+  }
   s.time = time();
-  s.stage = m_atRest ? "done" : (m_steps == 0 ? "placed" : "drape");
+  s.stage = m_atRest ? "done" : (m_steps == 0 ? "placed" : stage());
   return s;
 }
 

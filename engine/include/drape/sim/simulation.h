@@ -1,6 +1,9 @@
 #pragma once
-// The one step API for the GUI and the CLI (STYLE.md): a Simulation owns a scene's garment and solver, advances
+// The one step API for the GUI and the CLI (STYLE.md): a Simulation owns a scene's garment and solvers, advances
 // one step at a time, and hands out owned snapshots. Nothing here knows whether a window exists.
+// Stages follow solver.stage: "preview" (PD-DD only), "drape" (Newton from the placed garment) or "full"
+// (the preview until it settles or solver.preview.max_time, then the Newton drape from the preview's
+// positions with velocities reset).
 #include <atomic>
 #include <memory>
 #include <string>
@@ -17,11 +20,15 @@ const char* toString(StepStatus status);
 
 struct StepReport {
   StepStatus status = StepStatus::Converged;
-  std::string stage;           // "drape"
+  std::string stage;           // "preview" or "drape"
   double time = 0.0;           // simulated seconds after the step
   double h = 0.0;              // step taken, s
-  int iterations = 0;          // Newton iterations
-  int cgIterations = 0;
+  int iterations = 0;          // Newton iterations (drape) or local-global iterations (preview)
+  int cgIterations = 0;        // PCG iterations (drape: Newton systems; preview: collision-aware solve)
+  int domains = 0;             // preview: METIS domains used
+  double collisionTime = 0.0;  // preview phase times, seconds
+  double localTime = 0.0;
+  double globalTime = 0.0;
   int splits = 0;              // time-split retries
   double residual = 0.0;
   double kineticEnergy = 0.0;  // 99th percentile of per-vertex kinetic energy, J
@@ -50,8 +57,9 @@ class Simulation {
   const Scene& scene() const { return m_scene; }
   const Garment& garment() const { return m_garment; }
   const std::vector<int>& pinned() const { return m_pinned; }
-  // Names of the energies the solver uses ("membrane", "bending", "avatar_contact", ...).
+  // Names of the terms the current stage's solver uses ("membrane", "bending", "avatar_contact", ...).
   std::vector<std::string> terms() const;
+  std::string stage() const;  // "preview" or "drape"
   Eigen::MatrixX3d positions() const;  // |V| x 3, metres
   double time() const;
   int steps() const { return m_steps; }
@@ -65,6 +73,9 @@ class Simulation {
   std::unique_ptr<Solver> m_solver;
   int m_steps = 0;
   bool m_atRest = false;
+  double m_restSince = -1.0;  // preview: time the settle criterion started to hold
+
+  void startDrape();
 };
 
 }  // namespace drape

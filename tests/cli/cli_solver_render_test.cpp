@@ -1,0 +1,156 @@
+// drape --simulate (Newton drape), --render and --bench end to end through the executable.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "drape/render/png_io.h"
+#include "run_process.h"
+#include "shared_data.h"
+
+namespace drape::test {
+namespace {
+
+const std::filesystem::path kScratch = testOutputDir() / "cli_solver";
+
+ProcessResult drape(const std::string& args) {
+  return runProcess(quote(DRAPE_EXECUTABLE) + " " + args + " </dev/null", kScratch);
+}
+
+std::string asset(const std::string& relative) { return quote((assetsDir() / relative).string()); }
+
+TEST(CliSimulate, DrapeWritesGarmentAndPerStepStats) {
+  const auto obj = kScratch / "hang.obj", stats = kScratch / "hang.json";
+  auto r = drape("--simulate " + asset("scenes/hanging_cloth.json") + " --set mesh.target_edge_length=0.1" +
+                 " --max-sim-time 0.02 -o " + quote(obj.string()) + " --stats " + quote(stats.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  const auto j = nlohmann::json::parse(readWhole(stats));
+  EXPECT_EQ(j.at("status"), "MaxSimTime");
+  EXPECT_NEAR(j.at("sim_time_s").get<double>(), 0.02, 1e-3);
+  EXPECT_EQ(j.at("per_step").size(), j.at("steps").get<size_t>());
+  const auto terms = j.at("terms").get<std::vector<std::string>>();
+  EXPECT_NE(std::find(terms.begin(), terms.end(), "membrane"), terms.end());
+  EXPECT_NE(std::find(terms.begin(), terms.end(), "pins"), terms.end());
+  // Model only what the scene requires: no collider, so no contact or friction term.
+  EXPECT_EQ(std::find(terms.begin(), terms.end(), "avatar_contact"), terms.end());
+  EXPECT_EQ(std::find(terms.begin(), terms.end(), "friction"), terms.end());
+  for (const auto& s : j.at("per_step")) EXPECT_TRUE(std::isfinite(s.at("residual").get<double>()));
+  EXPECT_NE(readWhole(obj).find("\nf "), std::string::npos);
+}
+
+TEST(CliSimulate, ColliderSceneUsesContactAndFriction) {
+  const auto stats = kScratch / "tablecloth.json";
+  auto r = drape("--simulate " + asset("scenes/tablecloth.json") + " --set mesh.target_edge_length=0.1" +
+                 " --max-sim-time 0.005 -o " + quote((kScratch / "tc.obj").string()) + " --stats " +
+                 quote(stats.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto terms = nlohmann::json::parse(readWhole(stats)).at("terms").get<std::vector<std::string>>();
+  EXPECT_NE(std::find(terms.begin(), terms.end(), "avatar_contact"), terms.end());
+  EXPECT_NE(std::find(terms.begin(), terms.end(), "friction"), terms.end());
+  auto frictionless = drape("--simulate " + asset("scenes/tablecloth.json") +
+                            " --set mesh.target_edge_length=0.1 --set contact.friction=false --max-sim-time 0.005 -o " +
+                            quote((kScratch / "tc2.obj").string()) + " --stats " + quote(stats.string()));
+  ASSERT_EQ(frictionless.exitCode, 0) << frictionless.err;
+  const auto terms2 = nlohmann::json::parse(readWhole(stats)).at("terms").get<std::vector<std::string>>();
+  EXPECT_EQ(std::find(terms2.begin(), terms2.end(), "friction"), terms2.end());
+}
+
+TEST(CliSimulate, FullPipelineRunsThePreviewThenTheDrape) {
+  const auto stats = kScratch / "full.json";
+  auto r = drape("--simulate " + asset("scenes/tablecloth.json") + " --solver full --set mesh.target_edge_length=0.1" +
+                 " --set solver.preview.max_time=0.05 --max-sim-time 0.06 -o " + quote((kScratch / "full.obj").string()) +
+                 " --stats " + quote(stats.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  const auto j = nlohmann::json::parse(readWhole(stats));
+  bool sawPreview = false, sawDrape = false;
+  for (const auto& s : j.at("per_step")) {
+    const std::string stage = s.at("stage");
+    if (stage == "preview") {
+      EXPECT_FALSE(sawDrape) << "preview after the drape started";
+      sawPreview = true;
+      EXPECT_GE(s.at("domains").get<int>(), 1);
+    }
+    if (stage == "drape") sawDrape = true;
+  }
+  EXPECT_TRUE(sawPreview);
+  EXPECT_TRUE(sawDrape);
+  EXPECT_GE(j.at("sim_time_s").get<double>(), 0.06 - 1e-9);
+  EXPECT_GE(j.at("domains").get<int>(), 1);
+}
+
+TEST(CliRender, WritesPngOfRequestedSize) {
+  const auto png = kScratch / "default.png";
+  std::filesystem::remove(png);
+  auto r = drape("--render " + asset("scenes/default.json") + " -o " + quote(png.string()) + " --size 160x120");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const render::Image image = render::readPng(png);
+  EXPECT_EQ(image.width, 160);
+  EXPECT_EQ(image.height, 120);
+  // Not a blank image: the garment and the sphere make many distinct colours.
+  std::set<uint32_t> colours;
+  for (size_t i = 0; i + 3 < image.pixels.size(); i += 4)
+    colours.insert(image.pixels[i] << 16 | image.pixels[i + 1] << 8 | image.pixels[i + 2]);
+  EXPECT_GT(colours.size(), 50u);
+}
+
+TEST(CliRender, ViewAllWritesAContactSheet) {
+  const auto png = kScratch / "sheet.png";
+  auto r = drape("--render " + asset("scenes/default.json") + " -o " + quote(png.string()) +
+                 " --size 64x64 --view all --mode strain");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const render::Image image = render::readPng(png);
+  EXPECT_EQ(image.width, 3 * 64);
+  EXPECT_EQ(image.height, 2 * 64);
+}
+
+TEST(CliRender, ErrorsAreOneLine) {
+  auto notPng = drape("--render " + asset("scenes/default.json") + " -o " + quote((kScratch / "x.jpg").string()));
+  EXPECT_EQ(notPng.exitCode, 1);
+  EXPECT_NE(notPng.err.find("must be a .png"), std::string::npos) << notPng.err;
+  auto missing = drape("--render /nonexistent.json -o " + quote((kScratch / "x.png").string()));
+  EXPECT_EQ(missing.exitCode, 1);
+  EXPECT_NE(missing.err.find("/nonexistent.json"), std::string::npos);
+  auto badDir = drape("--render " + asset("scenes/default.json") + " -o /nonexistent-dir/x.png --size 32x32");
+  EXPECT_EQ(badDir.exitCode, 1);
+  EXPECT_NE(badDir.err.find("/nonexistent-dir/x.png"), std::string::npos) << badDir.err;
+  auto badStage = drape("--render " + asset("scenes/default.json") + " -o x.png --simulate everything");
+  EXPECT_EQ(badStage.exitCode, 1);
+  EXPECT_NE(badStage.err.find("'everything' is not one of none|preview|drape|full"), std::string::npos) << badStage.err;
+}
+
+TEST(CliBench, SweepReportsEveryRunAgainstTheReference) {
+  const auto report = kScratch / "bench.json";
+  auto r = drape("--bench " + asset("scenes/hanging_cloth.json") +
+                 " --set mesh.target_edge_length=0.2 --max-sim-time 0.01 --sweep solver.cg.tolerance=1e-1,1e-3 -o " +
+                 quote(report.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto j = nlohmann::json::parse(readWhole(report));
+  ASSERT_EQ(j.at("runs").size(), 3u);  // reference + two sweep values
+  EXPECT_EQ(j.at("runs")[0].at("run"), "reference");
+  EXPECT_DOUBLE_EQ(j.at("runs")[0].at("mean_distance_mm").get<double>(), 0.0);
+  for (const auto& run : j.at("runs")) EXPECT_GT(run.at("wall_time_s").get<double>(), 0.0);
+}
+
+}  // namespace
+}  // namespace drape::test
+
+namespace drape::test {
+namespace {
+
+TEST(CliMakeAvatar, BuildsAMannequinFromMeasurements) {
+  const auto body = kScratch / "female.obj";
+  auto r = drape("--make-avatar " + asset("avatars/female.yaml") + " -o " + quote(body.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  auto info = drape("--info " + quote(body.string()));
+  ASSERT_EQ(info.exitCode, 0) << info.err;
+  EXPECT_NE(info.out.find("triangles: 2"), std::string::npos) << info.out;  // 20k-29k triangles
+}
+
+TEST(CliMakeAvatar, BadMeasurementsNameTheFile) {
+  auto r = drape("--make-avatar " + asset("fabrics/denim.json") + " -o " + quote((kScratch / "x.obj").string()));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("denim.json"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace drape::test
