@@ -1,0 +1,74 @@
+#pragma once
+// Shared pieces of the desktop-application tests: one QApplication per process (the offscreen platform when
+// there is no display, so non-GL tests run anywhere), a dialog recorder, and scene helpers.
+#include <gtest/gtest.h>
+
+#include <QApplication>
+#include <QCoreApplication>
+#include <QTest>
+#include <cstdlib>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "drape/qt/scene_document.h"
+#include "drape/qt/user_dialogs.h"
+#include "shared_data.h"
+
+namespace drape::test {
+
+inline bool guiHaveDisplay() {
+  const char* display = std::getenv("DISPLAY");
+  const char* platform = std::getenv("QT_QPA_PLATFORM");
+  return (display && *display) || (platform && *platform);
+}
+
+inline QApplication& guiApplication() {
+  if (auto* existing = qobject_cast<QApplication*>(QCoreApplication::instance())) return *existing;
+  static char name[] = "drape_gui_tests";
+  static char platformFlag[] = "-platform";
+  static char offscreen[] = "offscreen";
+  static char* argvDisplay[] = {name, nullptr};
+  static char* argvOffscreen[] = {name, platformFlag, offscreen, nullptr};
+  static int argc = guiHaveDisplay() ? 1 : 3;
+  QCoreApplication::setOrganizationName("DrapeTests");
+  QCoreApplication::setApplicationName("drape_gui_tests");
+  static QApplication* app = new QApplication(argc, guiHaveDisplay() ? argvDisplay : argvOffscreen);
+  return *app;
+}
+
+// Records what the window would have shown in a modal dialog.
+class RecordingDialogs : public qt::UserDialogs {
+ public:
+  void showError(QWidget*, const QString& title, const QString& text) override { errors.push_back(text.toStdString()); }
+  SaveChoice askSaveChanges(QWidget*, const QString&) override {
+    ++saveQuestions;
+    return answer;
+  }
+  std::vector<std::string> errors;
+  int saveQuestions = 0;
+  SaveChoice answer = SaveChoice::Cancel;
+};
+
+// Processes events until done() or timeoutMs pass; returns done().
+inline bool waitUntil(const std::function<bool()>& done, int timeoutMs = 20000) {
+  return QTest::qWaitFor(done, timeoutMs);
+}
+
+// Settings that keep GUI tests fast: a coarse mesh (about 10 cm triangles).
+inline std::vector<std::pair<std::string, std::string>> coarseOverrides() {
+  return {{"mesh.target_edge_length", "0.1"}};
+}
+
+inline qt::SceneState coarseState(const std::filesystem::path& input) {
+  qt::SceneState state;
+  state.input = input;
+  for (const auto& [key, value] : coarseOverrides()) state.overrides[key] = value;
+  return state;
+}
+
+inline std::filesystem::path defaultScene() {
+  return assetsDir() / "scenes" / "default.json";
+}
+
+}  // namespace drape::test

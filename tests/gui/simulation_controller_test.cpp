@@ -1,0 +1,161 @@
+// The simulation worker thread: snapshots and step reports arrive on the UI thread through queued signals,
+// the garment moves, pause / cancel / reset / destruction during a step are safe.
+#include "drape/qt/simulation_controller.h"
+
+#include <QElapsedTimer>
+#include <QThread>
+#include <chrono>
+#include <thread>
+
+#include "gui_test_support.h"
+
+namespace drape::test {
+namespace {
+
+struct Recorder {
+  std::vector<std::shared_ptr<const Snapshot>> snapshots;
+  std::vector<StepReport> reports;
+  std::vector<qt::RunState> states;
+  std::vector<QString> errors;
+  bool offUiThread = false;  // a signal was delivered on another thread than the UI thread
+
+  void attach(qt::SimulationController& c) {
+    QObject::connect(&c, &qt::SimulationController::snapshotReady, [this](std::shared_ptr<const Snapshot> s) {
+      offUiThread |= QThread::currentThread() != QCoreApplication::instance()->thread();
+      snapshots.push_back(std::move(s));
+    });
+    QObject::connect(&c, &qt::SimulationController::stepReported, [this](const StepReport& r) {
+      offUiThread |= QThread::currentThread() != QCoreApplication::instance()->thread();
+      reports.push_back(r);
+    });
+    QObject::connect(&c, &qt::SimulationController::runStateChanged, [this](qt::RunState s) { states.push_back(s); });
+    QObject::connect(&c, &qt::SimulationController::errorOccurred, [this](const QString& e) { errors.push_back(e); });
+  }
+};
+
+std::shared_ptr<Simulation> makeSimulation(const std::string& edge = "0.1") {
+  qt::SceneState state = coarseState(defaultScene());
+  state.overrides["mesh.target_edge_length"] = edge;
+  // Without the initial relaxation (h_max / 16, velocities zeroed) a few steps move the cloth visibly.
+  state.overrides["solver.newton.relaxation"] = "false";
+  return std::make_shared<Simulation>(qt::buildScene(state));
+}
+
+double maxDisplacement(const Snapshot& a, const Snapshot& b) {
+  return (a.positions - b.positions).rowwise().norm().maxCoeff();
+}
+
+class SimulationControllerTest : public ::testing::Test {
+ protected:
+  void SetUp() override { guiApplication(); }
+};
+
+TEST_F(SimulationControllerTest, DrapeStepsOnTheWorkerAndSnapshotsArriveOnTheUiThread) {
+  qt::SimulationController controller;
+  Recorder rec;
+  rec.attach(controller);
+  EXPECT_NE(controller.worker()->thread(), QCoreApplication::instance()->thread());
+
+  auto simulation = makeSimulation();
+  const int vertices = simulation->garment().vertexCount();
+  controller.setSimulation(simulation);
+  simulation.reset();  // the worker owns it now
+  ASSERT_TRUE(waitUntil([&] { return !rec.snapshots.empty(); }));
+  const auto placed = rec.snapshots.front();
+  EXPECT_EQ(placed->stage, "placed");
+  EXPECT_EQ(placed->positions.rows(), vertices);
+  EXPECT_EQ(controller.runState(), qt::RunState::Ready);
+
+  controller.start();
+  ASSERT_TRUE(waitUntil([&] { return rec.reports.size() >= 8; })) << "reports: " << rec.reports.size();
+  controller.pause();
+  ASSERT_TRUE(waitUntil([&] { return controller.runState() == qt::RunState::Paused; }));
+  const size_t reportsAtPause = rec.reports.size();
+  QTest::qWait(200);
+  EXPECT_EQ(rec.reports.size(), reportsAtPause) << "no steps after pause";
+
+  EXPECT_FALSE(rec.offUiThread);
+  for (size_t i = 1; i < rec.reports.size(); ++i) EXPECT_GT(rec.reports[i].time, rec.reports[i - 1].time);
+  const auto latest = controller.latestSnapshot();
+  ASSERT_TRUE(latest);
+  EXPECT_NEAR(latest->time, rec.reports.back().time, 1e-12) << "pause sends the state it stopped at";
+  // Gravity pulls the cloth down: every reported step advanced time and the garment moved.
+  // Free fall for t seconds drops about g t^2 / 2; the cloth (not yet on the sphere) falls at least a third of it.
+  const double t = latest->time;
+  EXPECT_GT(maxDisplacement(*latest, *placed), 9.81 * t * t / 6.0) << "t = " << t;
+  EXPECT_LT(latest->positions.col(1).mean(), placed->positions.col(1).mean());
+
+  controller.resume();
+  ASSERT_TRUE(waitUntil([&] { return rec.reports.size() >= reportsAtPause + 3; }));
+  controller.pause();
+  ASSERT_TRUE(waitUntil([&] { return controller.runState() == qt::RunState::Paused; }));
+}
+
+TEST_F(SimulationControllerTest, CancelMidStepThenResetReturnsToThePlacedGarment) {
+  qt::SimulationController controller;
+  Recorder rec;
+  rec.attach(controller);
+  controller.setSimulation(makeSimulation("0.04"));  // slower steps, so cancel lands inside one
+  ASSERT_TRUE(waitUntil([&] { return !rec.snapshots.empty(); }));
+  const auto placed = rec.snapshots.front();
+  controller.start();
+  ASSERT_TRUE(waitUntil([&] { return rec.reports.size() >= 2; }));
+  QElapsedTimer timer;
+  timer.start();
+  controller.cancel();
+  ASSERT_TRUE(waitUntil([&] { return controller.runState() == qt::RunState::Cancelled; }, 10000));
+  const size_t reportsAtCancel = rec.reports.size();
+  QTest::qWait(300);
+  EXPECT_LE(rec.reports.size(), reportsAtCancel + 1) << "at most the interrupted step reports after cancel";
+  EXPECT_LT(timer.elapsed(), 10000);
+  // Drape does nothing after a cancel until reset.
+  controller.start();
+  QTest::qWait(200);
+  EXPECT_EQ(controller.runState(), qt::RunState::Cancelled);
+
+  const size_t snapshotsBefore = rec.snapshots.size();
+  controller.reset();
+  ASSERT_TRUE(waitUntil(
+      [&] { return controller.runState() == qt::RunState::Ready && rec.snapshots.size() > snapshotsBefore; }));
+  const auto reset = rec.snapshots.back();
+  EXPECT_EQ(reset->time, 0.0);
+  EXPECT_EQ(reset->stage, "placed");
+  EXPECT_LT(maxDisplacement(*reset, *placed), 1e-12);
+  controller.start();
+  ASSERT_TRUE(waitUntil([&] { return rec.reports.size() >= reportsAtCancel + 3; }));
+  EXPECT_TRUE(rec.errors.empty());
+}
+
+TEST_F(SimulationControllerTest, DestroyingTheControllerDuringAStepJoinsPromptly) {
+  auto controller = std::make_unique<qt::SimulationController>();
+  Recorder rec;
+  rec.attach(*controller);
+  controller->setSimulation(makeSimulation("0.04"));
+  controller->start();
+  ASSERT_TRUE(waitUntil([&] { return !rec.reports.empty(); }));
+  QElapsedTimer timer;
+  timer.start();
+  controller.reset();  // cancels the step in progress and joins the thread
+  EXPECT_LT(timer.elapsed(), 10000);
+}
+
+TEST_F(SimulationControllerTest, ANewSimulationReplacesARunningOne) {
+  qt::SimulationController controller;
+  Recorder rec;
+  rec.attach(controller);
+  controller.setSimulation(makeSimulation());
+  controller.start();
+  ASSERT_TRUE(waitUntil([&] { return rec.reports.size() >= 2; }));
+  auto second = makeSimulation("0.2");
+  const int vertices = second->garment().vertexCount();
+  controller.setSimulation(second);
+  second.reset();
+  ASSERT_TRUE(waitUntil([&] {
+    return controller.runState() == qt::RunState::Ready && controller.latestSnapshot() &&
+           controller.latestSnapshot()->positions.rows() == vertices;
+  }));
+  EXPECT_EQ(controller.latestSnapshot()->time, 0.0);
+}
+
+}  // namespace
+}  // namespace drape::test

@@ -1,0 +1,52 @@
+#pragma once
+// The Simulation dock: the run buttons (Preview, Drape, Pause, Resume, Reset, Cancel), the speed <-> accuracy
+// slider and, folded below, the advanced table of every setting. The buttons trigger the main window's
+// actions, so the toolbar, the menu, the shortcuts and this dock share one enabled state.
+#include <QWidget>
+#include <string>
+
+#include "drape/scene/settings.h"
+
+class QAction;
+class QLabel;
+class QSlider;
+
+namespace drape::qt {
+
+class SettingsTable;
+
+struct SimulationActions {
+  QAction* preview = nullptr;
+  QAction* drape = nullptr;
+  QAction* pause = nullptr;
+  QAction* resume = nullptr;
+  QAction* reset = nullptr;
+  QAction* cancel = nullptr;
+};
+
+class SimulationPanel : public QWidget {
+  Q_OBJECT
+
+ public:
+  SimulationPanel(const SimulationActions& actions, QWidget* parent = nullptr);
+
+  // Positions the slider at the level nearest to settings and fills the advanced table.
+  void showSettings(const Settings& settings);
+
+  QSlider* speedAccuracySlider() const { return m_slider; }
+  SettingsTable* settingsTable() const { return m_table; }
+
+ signals:
+  // The slider moved to a level (index into speedAccuracyLevels()).
+  void speedAccuracyChosen(int level);
+  void settingEdited(std::string key, std::string value);
+
+ private:
+  void describeLevel(int level);
+
+  QSlider* m_slider = nullptr;
+  QLabel* m_levelLabel = nullptr;
+  SettingsTable* m_table = nullptr;
+};
+
+}  // namespace drape::qt

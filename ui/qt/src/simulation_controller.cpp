@@ -1,0 +1,70 @@
+#include "drape/qt/simulation_controller.h"
+
+#include <QMetaObject>
+
+namespace drape::qt {
+
+SimulationController::SimulationController(QObject* parent) : QObject(parent) {
+  qRegisterMetaType<std::shared_ptr<const Snapshot>>();
+  qRegisterMetaType<std::shared_ptr<Simulation>>();
+  qRegisterMetaType<StepReport>();
+  qRegisterMetaType<RunState>();
+  m_thread.setObjectName("drape-simulation");
+  m_worker = new SimulationWorker;
+  m_worker->moveToThread(&m_thread);
+  connect(
+      m_worker, &SimulationWorker::snapshotReady, this,
+      [this](std::shared_ptr<const Snapshot> snapshot) {
+        m_latest = snapshot;
+        emit snapshotReady(std::move(snapshot));
+      },
+      Qt::QueuedConnection);
+  connect(m_worker, &SimulationWorker::stepReported, this, &SimulationController::stepReported, Qt::QueuedConnection);
+  connect(
+      m_worker, &SimulationWorker::runStateChanged, this,
+      [this](RunState state) {
+        m_lastState = state;
+        emit runStateChanged(state);
+      },
+      Qt::QueuedConnection);
+  connect(m_worker, &SimulationWorker::errorOccurred, this, &SimulationController::errorOccurred, Qt::QueuedConnection);
+  m_thread.start();
+}
+
+SimulationController::~SimulationController() {
+  // Safe during a step: the step returns Cancelled at its next iteration, the event loop then quits.
+  m_worker->cancel();
+  m_thread.quit();
+  m_thread.wait();
+  delete m_worker;
+}
+
+void SimulationController::setSimulation(std::shared_ptr<Simulation> simulation) {
+  // A running step of the old simulation is interrupted so the new one takes over promptly.
+  m_worker->cancel();
+  QMetaObject::invokeMethod(m_worker, "setSimulation", Qt::QueuedConnection,
+                            Q_ARG(std::shared_ptr<drape::Simulation>, std::move(simulation)));
+}
+
+void SimulationController::start() {
+  QMetaObject::invokeMethod(m_worker, &SimulationWorker::start, Qt::QueuedConnection);
+}
+
+void SimulationController::pause() {
+  QMetaObject::invokeMethod(m_worker, &SimulationWorker::pause, Qt::QueuedConnection);
+}
+
+void SimulationController::resume() {
+  start();
+}
+
+void SimulationController::reset() {
+  m_worker->cancel();
+  QMetaObject::invokeMethod(m_worker, &SimulationWorker::reset, Qt::QueuedConnection);
+}
+
+void SimulationController::cancel() {
+  m_worker->cancel();
+}
+
+}  // namespace drape::qt

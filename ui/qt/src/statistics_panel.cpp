@@ -1,0 +1,158 @@
+#include "drape/qt/statistics_panel.h"
+
+#include <QChart>
+#include <QChartView>
+#include <QFormLayout>
+#include <QGridLayout>
+#include <QLabel>
+#include <QLineSeries>
+#include <QLogValueAxis>
+#include <QVBoxLayout>
+#include <QValueAxis>
+#include <algorithm>
+#include <cmath>
+
+namespace drape::qt {
+namespace {
+
+constexpr int kMaxPoints = 2000;
+constexpr double kFloor = 1e-30;      // log axes need positive values
+constexpr double kMaxDecades = 1e-8;  // the plot spans at most 8 decades below its maximum
+
+// Keeps every other point when a series grows past kMaxPoints.
+void thin(QLineSeries* series) {
+  if (series->count() <= kMaxPoints) return;
+  QList<QPointF> points = series->points();
+  QList<QPointF> kept;
+  kept.reserve(points.size() / 2 + 1);
+  for (qsizetype i = 0; i < points.size(); i += 2) kept.push_back(points[i]);
+  if (kept.back() != points.back()) kept.push_back(points.back());
+  series->replace(kept);
+}
+
+double niceLower(double v) {
+  return std::pow(10.0, std::floor(std::log10(std::max(v, kFloor))));
+}
+double niceUpper(double v) {
+  return std::pow(10.0, std::ceil(std::log10(std::max(v, kFloor)) + 1e-9));
+}
+
+}  // namespace
+
+StatisticsPanel::StatisticsPanel(QWidget* parent) : QWidget(parent) {
+  auto* layout = new QVBoxLayout(this);
+  auto* grid = new QGridLayout;
+  const QStringList names = {tr("stage"),    tr("time"),           tr("step time"), tr("iterations"),
+                             tr("residual"), tr("kinetic energy"), tr("contacts"),  tr("max strain")};
+  for (int i = 0; i < names.size(); ++i) {
+    auto* caption = new QLabel(names[i] + ":");
+    caption->setStyleSheet("color: palette(mid);");
+    auto* value = new QLabel(QStringLiteral("-"));
+    value->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    grid->addWidget(caption, i / 2, (i % 2) * 2);
+    grid->addWidget(value, i / 2, (i % 2) * 2 + 1);
+    m_figures[names[i]] = value;
+  }
+  grid->setColumnStretch(1, 1);
+  grid->setColumnStretch(3, 1);
+  layout->addLayout(grid);
+
+  auto* chart = new QChart;
+  chart->setTitle(tr("Convergence"));
+  chart->legend()->setAlignment(Qt::AlignBottom);
+  chart->setMargins(QMargins(4, 4, 4, 4));
+  m_kinetic = new QLineSeries;
+  m_kinetic->setName(tr("kinetic energy (J, p99)"));
+  m_residual = new QLineSeries;
+  m_residual->setName(tr("residual"));
+  chart->addSeries(m_kinetic);
+  chart->addSeries(m_residual);
+  m_timeAxis = new QValueAxis;
+  m_timeAxis->setTitleText(tr("simulated time (s)"));
+  m_timeAxis->setLabelFormat("%.2f");
+  m_timeAxis->setRange(0, 0.1);
+  m_kineticAxis = new QLogValueAxis;
+  m_kineticAxis->setLabelFormat("%.0e");
+  m_kineticAxis->setRange(1e-10, 1);
+  m_residualAxis = new QLogValueAxis;
+  m_residualAxis->setLabelFormat("%.0e");
+  m_residualAxis->setRange(1e-6, 1);
+  chart->addAxis(m_timeAxis, Qt::AlignBottom);
+  chart->addAxis(m_kineticAxis, Qt::AlignLeft);
+  chart->addAxis(m_residualAxis, Qt::AlignRight);
+  m_kinetic->attachAxis(m_timeAxis);
+  m_kinetic->attachAxis(m_kineticAxis);
+  m_residual->attachAxis(m_timeAxis);
+  m_residual->attachAxis(m_residualAxis);
+  m_kineticAxis->setLinePenColor(m_kinetic->color());
+  m_residualAxis->setLinePenColor(m_residual->color());
+  m_view = new QChartView(chart);
+  m_view->setRenderHint(QPainter::Antialiasing);
+  m_view->setMinimumHeight(200);
+  layout->addWidget(m_view, 1);
+}
+
+void StatisticsPanel::setFigure(const QString& name, const QString& text) {
+  auto it = m_figures.find(name);
+  if (it != m_figures.end()) it->second->setText(text);
+}
+
+QString StatisticsPanel::figure(const QString& name) const {
+  auto it = m_figures.find(name);
+  return it == m_figures.end() ? QString() : it->second->text();
+}
+
+int StatisticsPanel::plottedPoints() const {
+  return static_cast<int>(m_residual->count());
+}
+
+void StatisticsPanel::setStage(const QString& stage) {
+  setFigure(tr("stage"), stage);
+}
+
+void StatisticsPanel::clear() {
+  m_kinetic->clear();
+  m_residual->clear();
+  m_steps = 0;
+  m_totalWall = 0.0;
+  m_minKinetic = m_minResidual = 1e300;
+  m_maxKinetic = m_maxResidual = 0.0;
+  m_timeAxis->setRange(0, 0.1);
+  for (auto& [name, label] : m_figures)
+    if (name != tr("stage")) label->setText(QStringLiteral("-"));
+}
+
+void StatisticsPanel::addReport(const StepReport& report) {
+  ++m_steps;
+  m_totalWall += report.wallTime;
+  setFigure(tr("stage"), QString::fromStdString(report.stage) + (report.atRest ? tr(" (at rest)") : QString()));
+  setFigure(tr("time"), tr("%1 s (step %2)").arg(report.time, 0, 'f', 4).arg(m_steps));
+  setFigure(tr("step time"),
+            tr("%1 ms (h = %2 ms)").arg(report.wallTime * 1e3, 0, 'f', 1).arg(report.h * 1e3, 0, 'g', 3));
+  setFigure(tr("iterations"), tr("%1 Newton, %2 CG").arg(report.iterations).arg(report.cgIterations));
+  setFigure(tr("residual"), QString::number(report.residual, 'e', 2));
+  setFigure(tr("kinetic energy"), QStringLiteral("%1 J").arg(report.kineticEnergy, 0, 'e', 2));
+  setFigure(tr("contacts"), QString::number(report.contacts));
+  setFigure(tr("max strain"), QStringLiteral("%1 %").arg(report.maxStrain * 100.0, 0, 'f', 2));
+
+  // Log axes: zero values (velocities zeroed during the initial relaxation) are left out of the plot.
+  if (std::isfinite(report.kineticEnergy) && report.kineticEnergy > kFloor) {
+    m_kinetic->append(report.time, report.kineticEnergy);
+    thin(m_kinetic);
+    m_minKinetic = std::min(m_minKinetic, report.kineticEnergy);
+    m_maxKinetic = std::max(m_maxKinetic, report.kineticEnergy);
+    m_kineticAxis->setRange(std::max(niceLower(m_minKinetic), niceUpper(m_maxKinetic) * kMaxDecades),
+                            niceUpper(m_maxKinetic));
+  }
+  if (std::isfinite(report.residual) && report.residual > kFloor) {
+    m_residual->append(report.time, report.residual);
+    thin(m_residual);
+    m_minResidual = std::min(m_minResidual, report.residual);
+    m_maxResidual = std::max(m_maxResidual, report.residual);
+    m_residualAxis->setRange(std::max(niceLower(m_minResidual), niceUpper(m_maxResidual) * kMaxDecades),
+                             niceUpper(m_maxResidual));
+  }
+  m_timeAxis->setRange(0, std::max(0.1, report.time * 1.05));
+}
+
+}  // namespace drape::qt
