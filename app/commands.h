@@ -19,6 +19,8 @@ int runMakeAvatar(const CliOptions& options, std::ostream& out);
 // when --view is not given) and writes the PNG atomically. Throws InputError for bad paths or no GL context.
 void renderToPng(const Snapshot& snapshot, const CliOptions& options, const std::string& cameraView, double fov,
                  const std::filesystem::path& output, std::ostream& out);
+// Throws InputError naming file when its directory does not exist or is not writable.
+void checkWritableDirectory(const std::filesystem::path& file);
 // Throws InputError unless output ends in .png.
 void checkPngPath(const std::filesystem::path& output, const std::string& option);
 int runListSettings(std::ostream& out);

@@ -1,4 +1,6 @@
 // drape --render SCENE -o OUT.png: headless rendering through EGL (OSMesa fallback); no QApplication.
+#include <unistd.h>
+
 #include <ostream>
 
 #include "commands.h"
@@ -34,12 +36,22 @@ Snapshot stageSnapshot(Scene scene, std::ostream& out) {
 
 }  // namespace
 
+void checkWritableDirectory(const std::filesystem::path& file) {
+  const std::filesystem::path dir = file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec))
+    throw InputError("cannot write " + file.string() + ": directory " + dir.string() + " does not exist");
+  if (::access(dir.c_str(), W_OK) != 0)
+    throw InputError("cannot write " + file.string() + ": directory " + dir.string() + " is not writable");
+}
+
 void checkPngPath(const std::filesystem::path& output, const std::string& option) {
   if (output.extension() != ".png") throw InputError(output.string() + ": the output of " + option + " must be a .png file");
 }
 
 int runRender(const CliOptions& options, std::ostream& out) {
   checkPngPath(options.output, "--render");
+  checkWritableDirectory(options.output);
   Scene scene = loadScene(requestWithStage(options));
   const std::string cameraView = scene.settings.text("camera.view");
   const double fov = scene.settings.number("camera.fov_deg");

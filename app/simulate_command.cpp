@@ -42,6 +42,9 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 int runSimulate(const CliOptions& options, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   if (!options.png.empty()) checkPngPath(options.png, "--png");
+  // Fail before a long drape, not after it, when an output cannot be written.
+  for (const std::string& file : {options.output, options.stats, options.png})
+    if (!file.empty()) checkWritableDirectory(file);
   Scene scene = loadScene(requestWithStage(options));
   const std::string cameraView = scene.settings.text("camera.view");
   const double fov = scene.settings.number("camera.fov_deg");

@@ -27,6 +27,11 @@ nlohmann::json parse(const std::string& text, const std::string& source) {
     if (auto pos = reason.find("syntax error"); pos != std::string::npos) reason = reason.substr(pos);
     throw InputError(source + ": invalid JSON at line " + std::to_string(line) + ", column " + std::to_string(column) +
                      ": " + reason);
+  } catch (const nlohmann::json::exception& e) {
+    // e.g. out_of_range 406: a number too large for a double ("1e999").
+    std::string reason = e.what();
+    if (auto pos = reason.find("] "); pos != std::string::npos) reason = reason.substr(pos + 2);
+    throw InputError(source + ": invalid JSON: " + reason);
   }
 }
 
@@ -62,10 +67,14 @@ std::string scalarText(const nlohmann::json& value, const std::string& where) {
   if (value.is_boolean()) return value.get<bool>() ? "true" : "false";
   if (value.is_number_integer()) return std::to_string(value.get<long long>());
   if (value.is_number()) {
-    std::ostringstream os;
-    os.precision(17);
-    os << value.get<double>();
-    return os.str();
+    // Shortest text that reads back to the same double (0.1 stays "0.1").
+    const double d = value.get<double>();
+    for (int precision = 15; precision <= 17; ++precision) {
+      std::ostringstream os;
+      os.precision(precision);
+      os << d;
+      if (precision == 17 || std::stod(os.str()) == d) return os.str();
+    }
   }
   if (value.is_null()) return "";
   throw InputError(where + ": expected a number, a string or true/false");
