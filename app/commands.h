@@ -15,9 +15,21 @@ int runRender(const CliOptions& options, std::ostream& out);
 int runBench(const CliOptions& options, std::ostream& out);
 int runMakeAvatar(const CliOptions& options, std::ostream& out);
 
-// Draws snapshot with the command line's --view/--size/--mode (cameraView and fov: the scene's camera settings
-// when --view is not given) and writes the PNG atomically. Throws InputError for bad paths or no GL context.
-void renderToPng(const Snapshot& snapshot, const CliOptions& options, const std::string& cameraView, double fov,
+// The scene's camera settings: a preset view, or an explicit eye (and target, up) when camera.eye is set.
+struct SceneCamera {
+  std::string view = "three-quarter";
+  double fovDegrees = 35.0;
+  bool explicitEye = false;
+  bool explicitTarget = false;
+  Eigen::Vector3d eye = Eigen::Vector3d::Zero();
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
+  Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+};
+SceneCamera sceneCamera(const Settings& settings);
+
+// Draws snapshot with the command line's --view/--size/--mode (the scene's camera when --view is not given) and
+// writes the PNG atomically. Throws InputError for bad paths or no GL context.
+void renderToPng(const Snapshot& snapshot, const CliOptions& options, const SceneCamera& camera,
                  const std::filesystem::path& output, std::ostream& out);
 // Throws InputError naming file when its directory does not exist or is not writable.
 void checkWritableDirectory(const std::filesystem::path& file);

@@ -1,6 +1,7 @@
 // drape --render SCENE -o OUT.png: headless rendering through EGL (OSMesa fallback); no QApplication.
 #include <unistd.h>
 
+#include <Eigen/Geometry>
 #include <ostream>
 
 #include "commands.h"
@@ -53,14 +54,25 @@ int runRender(const CliOptions& options, std::ostream& out) {
   checkPngPath(options.output, "--render");
   checkWritableDirectory(options.output);
   Scene scene = loadScene(requestWithStage(options));
-  const std::string cameraView = scene.settings.text("camera.view");
-  const double fov = scene.settings.number("camera.fov_deg");
+  const SceneCamera camera = sceneCamera(scene.settings);
   const Snapshot snapshot = stageSnapshot(std::move(scene), out);
-  renderToPng(snapshot, options, cameraView, fov, options.output, out);
+  renderToPng(snapshot, options, camera, options.output, out);
   return 0;
 }
 
-void renderToPng(const Snapshot& snapshot, const CliOptions& options, const std::string& cameraView, double fov,
+SceneCamera sceneCamera(const Settings& settings) {
+  SceneCamera c;
+  c.view = settings.text("camera.view");
+  c.fovDegrees = settings.number("camera.fov_deg");
+  c.explicitEye = settings.has("camera.eye");
+  c.explicitTarget = settings.has("camera.target");
+  if (c.explicitEye) c.eye = settings.vector3("camera.eye");
+  if (c.explicitTarget) c.target = settings.vector3("camera.target");
+  c.up = settings.vector3("camera.up");
+  return c;
+}
+
+void renderToPng(const Snapshot& snapshot, const CliOptions& options, const SceneCamera& sceneCam,
                  const std::filesystem::path& output, std::ostream& out) {
 
   render::RenderOptions ro;
@@ -73,11 +85,21 @@ void renderToPng(const Snapshot& snapshot, const CliOptions& options, const std:
     if (options.view == "all") {
       image = renderer.contactSheet(snapshot, ro);
     } else {
-      // --view given on the command line wins; otherwise the scene's camera.view.
-      const std::string view = options.viewGiven ? options.view : cameraView;
-      const render::ViewPreset preset = *render::parseViewPreset(view);
-      const render::Camera camera =
-          render::presetCamera(preset, snapshot.bounds(), double(ro.width) / ro.height, fov);
+      // --view given on the command line wins; then the scene's explicit camera; then its camera.view.
+      render::Camera camera;
+      if (!options.viewGiven && sceneCam.explicitEye) {
+        camera.eye = sceneCam.eye;
+        camera.target = sceneCam.explicitTarget ? sceneCam.target : snapshot.bounds().center();
+        camera.up = sceneCam.up;
+        camera.fovYDegrees = sceneCam.fovDegrees;
+        if ((camera.eye - camera.target).norm() < 1e-9 || camera.up.cross(camera.eye - camera.target).norm() < 1e-9)
+          throw InputError("camera.eye, camera.target and camera.up do not define a view (eye on the target, or "
+                           "looking along up)");
+      } else {
+        const std::string view = options.viewGiven ? options.view : sceneCam.view;
+        camera = render::presetCamera(*render::parseViewPreset(view), snapshot.bounds(),
+                                      double(ro.width) / ro.height, sceneCam.fovDegrees);
+      }
       image = renderer.render(snapshot, camera, ro);
     }
     out << "render: " << renderer.backendName() << " (" << renderer.glRendererName() << ")\n";

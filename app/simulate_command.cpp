@@ -46,8 +46,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
   for (const std::string& file : {options.output, options.stats, options.png})
     if (!file.empty()) checkWritableDirectory(file);
   Scene scene = loadScene(requestWithStage(options));
-  const std::string cameraView = scene.settings.text("camera.view");
-  const double fov = scene.settings.number("camera.fov_deg");
+  const SceneCamera camera = sceneCamera(scene.settings);
   const std::string stage = scene.settings.text("solver.stage");
   nlohmann::json stats;
   auto warnings = scene.diagnostics.warnings();
@@ -59,7 +58,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
     const auto pinned = resolvePins(scene, garment);
     exportGarment(garment, garment.positions, options.output);
     if (!options.png.empty())
-      renderToPng(makeSnapshot(scene, garment, garment.positions), options, cameraView, fov, options.png, out);
+      renderToPng(makeSnapshot(scene, garment, garment.positions), options, camera, options.png, out);
     warnings.insert(warnings.end(), diagnostics.warnings().begin(), diagnostics.warnings().end());
     stats = {{"status", "Placed"}, {"steps", 0}, {"sim_time_s", 0.0}, {"terms", nlohmann::json::array()},
              {"per_step", nlohmann::json::array()}, {"vertices", garment.vertexCount()},
@@ -102,7 +101,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
       }
     }
     exportGarment(simulation.garment(), simulation.positions(), options.output);
-    if (!options.png.empty()) renderToPng(simulation.snapshot(), options, cameraView, fov, options.png, out);
+    if (!options.png.empty()) renderToPng(simulation.snapshot(), options, camera, options.png, out);
     stats = {{"status", status}, {"steps", simulation.steps()}, {"sim_time_s", simulation.time()}, {"terms", terms},
              {"per_step", perStep}, {"vertices", simulation.garment().vertexCount()},
              {"triangles", simulation.garment().triangleCount()}, {"pinned_vertices", simulation.pinned().size()},

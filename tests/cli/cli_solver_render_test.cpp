@@ -154,3 +154,28 @@ TEST(CliMakeAvatar, BadMeasurementsNameTheFile) {
 
 }  // namespace
 }  // namespace drape::test
+
+namespace drape::test {
+namespace {
+
+TEST(CliRender, ExplicitCameraFromSettingsChangesTheView) {
+  const auto preset = kScratch / "cam_preset.png", explicitCam = kScratch / "cam_explicit.png";
+  auto a = drape("--render " + asset("scenes/default.json") + " -o " + quote(preset.string()) + " --size 96x96");
+  auto b = drape("--render " + asset("scenes/default.json") + " -o " + quote(explicitCam.string()) +
+                 " --size 96x96 --set camera.eye=0,3,0.01 --set camera.target=0,0.8,0");
+  ASSERT_EQ(a.exitCode, 0) << a.err;
+  ASSERT_EQ(b.exitCode, 0) << b.err;
+  const render::Image ia = render::readPng(preset), ib = render::readPng(explicitCam);
+  ASSERT_EQ(ia.pixels.size(), ib.pixels.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < ia.pixels.size(); i += 4)
+    differing += std::abs(int(ia.pixels[i]) - int(ib.pixels[i])) > 8;
+  EXPECT_GT(differing, ia.pixels.size() / 4 / 10);  // a top-down view differs from the three-quarter preset
+  auto bad = drape("--render " + asset("scenes/default.json") + " -o " + quote(explicitCam.string()) +
+                   " --size 32x32 --set camera.eye=0,1,0 --set camera.target=0,1,0");
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_NE(bad.err.find("camera.eye"), std::string::npos) << bad.err;
+}
+
+}  // namespace
+}  // namespace drape::test

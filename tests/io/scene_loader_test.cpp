@@ -140,3 +140,23 @@ TEST(SceneLoader, RealScenesOnMeanAllLoad) {
 
 }  // namespace
 }  // namespace drape::test
+
+namespace drape::test {
+namespace {
+
+TEST(SceneLoader, CameraVectorsFromTheSceneFile) {
+  SceneRequest request;
+  request.input = testOutputDir() / "camera_scene.json";
+  {
+    std::ofstream out(request.input);
+    out << R"({"pattern": ")" << (assetsDir() / "patterns" / "tablecloth.json").string()
+        << R"(", "camera": {"eye": [0, 2.5, 3], "target": [0, 0.8, 0], "fov_deg": 30}})";
+  }
+  const Scene scene = loadScene(request);
+  EXPECT_TRUE(scene.settings.vector3("camera.eye").isApprox(Eigen::Vector3d(0, 2.5, 3)));
+  EXPECT_TRUE(scene.settings.vector3("camera.target").isApprox(Eigen::Vector3d(0, 0.8, 0)));
+  EXPECT_DOUBLE_EQ(scene.settings.number("camera.fov_deg"), 30);
+}
+
+}  // namespace
+}  // namespace drape::test

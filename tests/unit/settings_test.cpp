@@ -48,3 +48,19 @@ TEST(Settings, EverySpecDefaultIsValid) {
 
 }  // namespace
 }  // namespace drape
+
+namespace drape {
+namespace {
+
+TEST(Settings, Vector3ParsesThreeNumbers) {
+  Settings s;
+  EXPECT_FALSE(s.has("camera.eye"));
+  s.set("camera.eye", "0.5, 1.5,-3", "test");
+  EXPECT_TRUE(s.vector3("camera.eye").isApprox(Eigen::Vector3d(0.5, 1.5, -3)));
+  EXPECT_TRUE(s.vector3("camera.up").isApprox(Eigen::Vector3d::UnitY()));
+  for (const char* bad : {"1,2", "1,2,3,4", "a,b,c", "1,,3", "1,2,nan"})
+    EXPECT_THROW(s.set("camera.eye", bad, "test"), InputError) << bad;
+}
+
+}  // namespace
+}  // namespace drape

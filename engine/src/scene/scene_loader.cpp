@@ -25,6 +25,11 @@ void flattenInto(const nlohmann::json& object, const std::string& prefix, Settin
     const std::string dotted = prefix + "." + key;
     if (value.is_object()) {
       flattenInto(value, dotted, settings, where);
+    } else if (value.is_array()) {
+      // [x, y, z] for vector settings.
+      std::string text;
+      for (const auto& item : value) text += (text.empty() ? "" : ",") + json::scalarText(item, where + ": '" + dotted + "'");
+      settings.set(dotted, text, where);
     } else {
       settings.set(dotted, json::scalarText(value, where + ": '" + dotted + "'"), where);
     }

@@ -15,6 +15,7 @@ std::string describe(const SettingSpec& spec) {
     case SettingType::Integer: return "an integer";
     case SettingType::Boolean: return "true or false";
     case SettingType::Text: return "text";
+    case SettingType::Vector3: return "three numbers x,y,z";
     case SettingType::Choice: {
       std::string s = "one of";
       for (const auto& c : spec.choices) s += " " + c;
@@ -61,6 +62,22 @@ std::string canonical(const SettingSpec& spec, const std::string& value, const s
       fail("'" + value + "' is not " + describe(spec));
       break;
     case SettingType::Text: return value;
+    case SettingType::Vector3: {
+      std::string canon;
+      size_t start = 0;
+      for (int i = 0; i < 3; ++i) {
+        const size_t comma = value.find(',', start);
+        if ((i < 2) != (comma != std::string::npos)) fail("'" + value + "' is not " + describe(spec));
+        std::string part = value.substr(start, i < 2 ? comma - start : std::string::npos);
+        part.erase(0, part.find_first_not_of(' '));
+        part.erase(part.find_last_not_of(' ') + 1);
+        double v = 0;
+        if (!parseNumber(part, v)) fail("'" + value + "' is not " + describe(spec));
+        canon += (i ? "," : "") + part;
+        start = comma + 1;
+      }
+      return canon;
+    }
   }
   return value;
 }
@@ -115,6 +132,19 @@ double Settings::number(std::string_view key) const {
 int Settings::integer(std::string_view key) const { return static_cast<int>(std::lround(number(key))); }
 
 bool Settings::flag(std::string_view key) const { return raw(key) == "true"; }
+
+Eigen::Vector3d Settings::vector3(std::string_view key) const {
+  const std::string& v = raw(key);
+  if (v.empty()) throw std::logic_error("Settings: " + std::string(key) + " is unset");
+  Eigen::Vector3d out;
+  size_t start = 0;
+  for (int i = 0; i < 3; ++i) {
+    const size_t comma = v.find(',', start);
+    out[i] = std::stod(v.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    start = comma + 1;
+  }
+  return out;
+}
 
 const std::string& Settings::text(std::string_view key) const { return raw(key); }
 

@@ -73,6 +73,9 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"camera.view", T::Choice, "three-quarter", "", "default camera preset", -1e300, 1e300,
        {"front", "back", "left", "right", "three-quarter"}},
       {"camera.fov_deg", T::Number, "35", "deg", "vertical field of view", 5, 120},
+      {"camera.eye", T::Vector3, "", "m", "explicit camera position (overrides camera.view unless --view is given)"},
+      {"camera.target", T::Vector3, "", "m", "point the explicit camera looks at (default: centre of the scene)"},
+      {"camera.up", T::Vector3, "0,1,0", "", "up direction of the explicit camera"},
   };
   return table;
 }

@@ -28,6 +28,11 @@ QJsonValue typedValue(const std::string& key, const std::string& value) {
     case SettingType::Number: return text.toDouble();
     case SettingType::Integer: return text.toLongLong();
     case SettingType::Boolean: return value == "true";
+    case SettingType::Vector3: {
+      QJsonArray array;
+      for (const QString& part : text.split(',')) array.append(part.trimmed().toDouble());
+      return array;
+    }
     default: return text;
   }
 }

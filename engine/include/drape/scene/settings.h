@@ -3,6 +3,7 @@
 // type, default, unit and valid range. Scene files and `--set key=value` both write through this registry,
 // so an unknown key or a bad value gets the same clear error wherever it comes from, and the GUI and the
 // benchmarks can list every setting.
+#include <Eigen/Core>
 #include <map>
 #include <string>
 #include <string_view>
@@ -10,7 +11,8 @@
 
 namespace drape {
 
-enum class SettingType { Number, Integer, Boolean, Text, Choice };
+// Vector3: three numbers, written [x, y, z] in scene files and x,y,z on the command line.
+enum class SettingType { Number, Integer, Boolean, Text, Choice, Vector3 };
 
 struct SettingSpec {
   std::string key;           // dotted name
@@ -41,6 +43,7 @@ class Settings {
   int integer(std::string_view key) const;
   bool flag(std::string_view key) const;
   const std::string& text(std::string_view key) const;
+  Eigen::Vector3d vector3(std::string_view key) const;
 
   // Settings that differ from their defaults, key -> value (for reports and saving).
   std::map<std::string, std::string> changed() const;
