@@ -81,7 +81,7 @@ TEST(CliSimulate, FullPipelineRunsThePreviewThenTheDrape) {
 TEST(CliRender, WritesPngOfRequestedSize) {
   const auto png = kScratch / "default.png";
   std::filesystem::remove(png);
-  auto r = drape("--render " + asset("scenes/default.json") + " -o " + quote(png.string()) + " --size 160x120");
+  auto r = drape("--render " + asset("scenes/tablecloth.json") + " -o " + quote(png.string()) + " --size 160x120");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const render::Image image = render::readPng(png);
   EXPECT_EQ(image.width, 160);
@@ -95,7 +95,7 @@ TEST(CliRender, WritesPngOfRequestedSize) {
 
 TEST(CliRender, ViewAllWritesAContactSheet) {
   const auto png = kScratch / "sheet.png";
-  auto r = drape("--render " + asset("scenes/default.json") + " -o " + quote(png.string()) +
+  auto r = drape("--render " + asset("scenes/tablecloth.json") + " -o " + quote(png.string()) +
                  " --size 64x64 --view all --mode strain");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const render::Image image = render::readPng(png);
@@ -104,16 +104,16 @@ TEST(CliRender, ViewAllWritesAContactSheet) {
 }
 
 TEST(CliRender, ErrorsAreOneLine) {
-  auto notPng = drape("--render " + asset("scenes/default.json") + " -o " + quote((kScratch / "x.jpg").string()));
+  auto notPng = drape("--render " + asset("scenes/tablecloth.json") + " -o " + quote((kScratch / "x.jpg").string()));
   EXPECT_EQ(notPng.exitCode, 1);
   EXPECT_NE(notPng.err.find("must be a .png"), std::string::npos) << notPng.err;
   auto missing = drape("--render /nonexistent.json -o " + quote((kScratch / "x.png").string()));
   EXPECT_EQ(missing.exitCode, 1);
   EXPECT_NE(missing.err.find("/nonexistent.json"), std::string::npos);
-  auto badDir = drape("--render " + asset("scenes/default.json") + " -o /nonexistent-dir/x.png --size 32x32");
+  auto badDir = drape("--render " + asset("scenes/tablecloth.json") + " -o /nonexistent-dir/x.png --size 32x32");
   EXPECT_EQ(badDir.exitCode, 1);
   EXPECT_NE(badDir.err.find("/nonexistent-dir/x.png"), std::string::npos) << badDir.err;
-  auto badStage = drape("--render " + asset("scenes/default.json") + " -o x.png --simulate everything");
+  auto badStage = drape("--render " + asset("scenes/tablecloth.json") + " -o x.png --simulate everything");
   EXPECT_EQ(badStage.exitCode, 1);
   EXPECT_NE(badStage.err.find("'everything' is not one of none|preview|drape|full"), std::string::npos) << badStage.err;
 }
@@ -160,8 +160,8 @@ namespace {
 
 TEST(CliRender, ExplicitCameraFromSettingsChangesTheView) {
   const auto preset = kScratch / "cam_preset.png", explicitCam = kScratch / "cam_explicit.png";
-  auto a = drape("--render " + asset("scenes/default.json") + " -o " + quote(preset.string()) + " --size 96x96");
-  auto b = drape("--render " + asset("scenes/default.json") + " -o " + quote(explicitCam.string()) +
+  auto a = drape("--render " + asset("scenes/tablecloth.json") + " -o " + quote(preset.string()) + " --size 96x96");
+  auto b = drape("--render " + asset("scenes/tablecloth.json") + " -o " + quote(explicitCam.string()) +
                  " --size 96x96 --set camera.eye=0,3,0.01 --set camera.target=0,0.8,0");
   ASSERT_EQ(a.exitCode, 0) << a.err;
   ASSERT_EQ(b.exitCode, 0) << b.err;
@@ -171,7 +171,7 @@ TEST(CliRender, ExplicitCameraFromSettingsChangesTheView) {
   for (size_t i = 0; i < ia.pixels.size(); i += 4)
     differing += std::abs(int(ia.pixels[i]) - int(ib.pixels[i])) > 8;
   EXPECT_GT(differing, ia.pixels.size() / 4 / 10);  // a top-down view differs from the three-quarter preset
-  auto bad = drape("--render " + asset("scenes/default.json") + " -o " + quote(explicitCam.string()) +
+  auto bad = drape("--render " + asset("scenes/tablecloth.json") + " -o " + quote(explicitCam.string()) +
                    " --size 32x32 --set camera.eye=0,1,0 --set camera.target=0,1,0");
   EXPECT_EQ(bad.exitCode, 1);
   EXPECT_NE(bad.err.find("camera.eye"), std::string::npos) << bad.err;

@@ -36,7 +36,7 @@ TEST(Cli, UnknownOptionIsOneLineError) {
 }
 
 TEST(Cli, InfoOnDefaultScene) {
-  auto r = drape("--info " + asset("scenes/default.json"));
+  auto r = drape("--info " + asset("scenes/tablecloth.json"));
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("panels: 1"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("triangles:"), std::string::npos);
@@ -59,8 +59,8 @@ TEST(Cli, InfoOnMalformedPatternNamesFileAndElement) {
 }
 
 TEST(Cli, SetOverridesASettingAndChangesTheMesh) {
-  auto coarse = drape("--info " + asset("scenes/default.json") + " --set mesh.target_edge_length=0.1");
-  auto fine = drape("--info " + asset("scenes/default.json") + " --set mesh.target_edge_length=0.05");
+  auto coarse = drape("--info " + asset("scenes/tablecloth.json") + " --set mesh.target_edge_length=0.1");
+  auto fine = drape("--info " + asset("scenes/tablecloth.json") + " --set mesh.target_edge_length=0.05");
   ASSERT_EQ(coarse.exitCode, 0) << coarse.err;
   ASSERT_EQ(fine.exitCode, 0) << fine.err;
   auto triangles = [](const std::string& out) {
@@ -75,20 +75,20 @@ TEST(Cli, SetOverridesASettingAndChangesTheMesh) {
 }
 
 TEST(Cli, UnknownSetKeyListsValidKeys) {
-  auto r = drape("--info " + asset("scenes/default.json") + " --set mesh.edge=0.1");
+  auto r = drape("--info " + asset("scenes/tablecloth.json") + " --set mesh.edge=0.1");
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.err.find("unknown setting 'mesh.edge'"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("mesh.target_edge_length"), std::string::npos) << r.err;
 }
 
 TEST(Cli, BadSetValueIsRejected) {
-  auto r = drape("--info " + asset("scenes/default.json") + " --set mesh.target_edge_length=abc");
+  auto r = drape("--info " + asset("scenes/tablecloth.json") + " --set mesh.target_edge_length=abc");
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.err.find("'abc' is not a number"), std::string::npos) << r.err;
 }
 
 TEST(Cli, UnknownFabricListsPresets) {
-  auto r = drape("--info " + asset("scenes/default.json") + " --fabric velvet");
+  auto r = drape("--info " + asset("scenes/tablecloth.json") + " --fabric velvet");
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.err.find("unknown fabric preset 'velvet'"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("denim"), std::string::npos) << r.err;
@@ -98,7 +98,7 @@ TEST(Cli, SimulateNoneWritesPlacedGarmentAndStats) {
   const auto obj = kScratch / "placed.obj";
   const auto stats = kScratch / "placed_stats.json";
   std::filesystem::remove(obj);
-  auto r = drape("--simulate " + asset("scenes/default.json") + " --solver none -o " + quote(obj.string()) +
+  auto r = drape("--simulate " + asset("scenes/tablecloth.json") + " --solver none -o " + quote(obj.string()) +
                  " --stats " + quote(stats.string()));
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const std::string text = readWhole(obj);
@@ -112,13 +112,13 @@ TEST(Cli, SimulateNoneWritesPlacedGarmentAndStats) {
 }
 
 TEST(Cli, SimulateWithoutOutputFails) {
-  auto r = drape("--simulate " + asset("scenes/default.json"));
+  auto r = drape("--simulate " + asset("scenes/tablecloth.json"));
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.err.find("missing -o"), std::string::npos) << r.err;
 }
 
 TEST(Cli, UnwritableOutputFailsCleanly) {
-  auto r = drape("--simulate " + asset("scenes/default.json") + " -o /nonexistent-dir/out.obj");
+  auto r = drape("--simulate " + asset("scenes/tablecloth.json") + " -o /nonexistent-dir/out.obj");
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.err.find("/nonexistent-dir/out.obj"), std::string::npos) << r.err;
 }

@@ -68,7 +68,7 @@ inline qt::SceneState coarseState(const std::filesystem::path& input) {
 }
 
 inline std::filesystem::path defaultScene() {
-  return assetsDir() / "scenes" / "default.json";
+  return assetsDir() / "scenes" / "tablecloth.json";
 }
 
 }  // namespace drape::test

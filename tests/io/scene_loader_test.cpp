@@ -20,7 +20,7 @@ Scene load(const std::filesystem::path& file, std::vector<std::pair<std::string,
 }
 
 TEST(SceneLoader, DefaultSceneHasPatternFabricAndSphere) {
-  const Scene scene = load(assetsDir() / "scenes" / "default.json");
+  const Scene scene = load(assetsDir() / "scenes" / "tablecloth.json");
   EXPECT_EQ(scene.pattern.panels.size(), 1u);
   EXPECT_FALSE(scene.hasAvatar());
   ASSERT_EQ(scene.colliders.size(), 1u);
@@ -32,7 +32,7 @@ TEST(SceneLoader, DefaultSceneHasPatternFabricAndSphere) {
 }
 
 TEST(SceneLoader, OverridesApplyOverTheFile) {
-  const Scene scene = load(assetsDir() / "scenes" / "default.json",
+  const Scene scene = load(assetsDir() / "scenes" / "tablecloth.json",
                            {{"mesh.target_edge_length", "0.05"}, {"fabric.density", "0.3"}, {"fabric.preset", "denim"}});
   EXPECT_DOUBLE_EQ(scene.settings.number("mesh.target_edge_length"), 0.05);
   EXPECT_EQ(scene.fabric.name, "Denim");
@@ -48,7 +48,7 @@ TEST(SceneLoader, BarePatternBecomesAScene) {
   EXPECT_EQ(scene.pattern.panels.size(), 1u);
   EXPECT_EQ(scene.fabric.name, "Silk charmeuse");
   EXPECT_TRUE(isPatternFile(request.input));
-  EXPECT_FALSE(isPatternFile(assetsDir() / "scenes" / "default.json"));
+  EXPECT_FALSE(isPatternFile(assetsDir() / "scenes" / "tablecloth.json"));
 }
 
 TEST(SceneLoader, PinsResolveToTheTopCorners) {
@@ -156,6 +156,24 @@ TEST(SceneLoader, CameraVectorsFromTheSceneFile) {
   EXPECT_TRUE(scene.settings.vector3("camera.eye").isApprox(Eigen::Vector3d(0, 2.5, 3)));
   EXPECT_TRUE(scene.settings.vector3("camera.target").isApprox(Eigen::Vector3d(0, 0.8, 0)));
   EXPECT_DOUBLE_EQ(scene.settings.number("camera.fov_deg"), 30);
+}
+
+}  // namespace
+}  // namespace drape::test
+
+namespace drape::test {
+namespace {
+
+TEST(SceneLoader, DefaultSceneIsTheTshirtOnTheDefaultMannequin) {
+  const Scene scene = load(assetsDir() / "scenes" / "default.json");
+  EXPECT_TRUE(scene.hasAvatar());
+  EXPECT_GT(scene.pattern.panels.size(), 3u);
+  EXPECT_GT(scene.pattern.stitches.size(), 3u);
+  const BoundingBox body = boundsOf(scene.avatar.vertices);
+  EXPECT_NEAR(body.min.y(), 0.0, 0.01);  // feet on the floor
+  EXPECT_GT(body.size().y(), 1.5);
+  const Garment garment = buildGarment(scene.pattern, {scene.settings.number("mesh.target_edge_length")});
+  EXPECT_FALSE(garment.stitchPairs.empty());
 }
 
 }  // namespace
