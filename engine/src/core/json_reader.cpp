@@ -8,30 +8,33 @@
 
 namespace drape::json {
 
+std::string describeParseFailure(const std::string& text, const nlohmann::json::exception& e) {
+  // "[json.exception.parse_error.101] parse error at line 1, column 2: ..." -> "parse error at line 1, column 2: ..."
+  std::string what = e.what();
+  if (const size_t close = what.find("] "); !what.empty() && what[0] == '[' && close != std::string::npos)
+    what = what.substr(close + 2);
+  if (dynamic_cast<const nlohmann::json::parse_error*>(&e)) return what;
+  // Other failures (out_of_range 406, "number overflow parsing '1e999'") carry no position: find the token.
+  const size_t open = what.find('\'');
+  const size_t close = open == std::string::npos ? open : what.find('\'', open + 1);
+  if (close == std::string::npos || close == open + 1) return what;
+  const size_t at = text.find(what.substr(open + 1, close - open - 1));
+  if (at == std::string::npos) return what;
+  size_t line = 1, lineStart = 0;
+  for (size_t i = 0; i < at; ++i)
+    if (text[i] == '\n') {
+      ++line;
+      lineStart = i + 1;
+    }
+  return what + " (non-finite number at line " + std::to_string(line) + ", column " + std::to_string(at - lineStart + 1) +
+         ")";
+}
+
 nlohmann::json parse(const std::string& text, const std::string& source) {
   try {
     return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    // Convert the byte offset into a line and column.
-    const size_t offset = std::min<size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
-    size_t line = 1, column = 1;
-    for (size_t i = 0; i < offset; ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
-    }
-    std::string reason = e.what();
-    if (auto pos = reason.find("syntax error"); pos != std::string::npos) reason = reason.substr(pos);
-    throw InputError(source + ": invalid JSON at line " + std::to_string(line) + ", column " + std::to_string(column) +
-                     ": " + reason);
   } catch (const nlohmann::json::exception& e) {
-    // e.g. out_of_range 406: a number too large for a double ("1e999").
-    std::string reason = e.what();
-    if (auto pos = reason.find("] "); pos != std::string::npos) reason = reason.substr(pos + 2);
-    throw InputError(source + ": invalid JSON: " + reason);
+    throw InputError(source + ": invalid JSON: " + describeParseFailure(text, e));
   }
 }
 

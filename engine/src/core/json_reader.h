@@ -7,7 +7,11 @@
 
 namespace drape::json {
 
-// Parses text; on a syntax error throws InputError "<source>: invalid JSON at line L, column C: <reason>".
+// Why parsing text failed, located: nlohmann's "parse error at line L, column C: ..." for syntax errors; for a
+// number too large for a double, its text plus " (non-finite number at line L, column C)". For messages.
+std::string describeParseFailure(const std::string& text, const nlohmann::json::exception& e);
+
+// Parses text; on failure throws InputError "<source>: invalid JSON: <describeParseFailure>".
 nlohmann::json parse(const std::string& text, const std::string& source);
 
 // Reads and parses a file; a missing or unreadable file throws InputError naming it.

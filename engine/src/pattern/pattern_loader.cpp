@@ -2,6 +2,8 @@
 // pattern_validation.cpp, curvature in curvature_parser.cpp. Format: docs/FORMATS.md "Pattern files".
 #include "drape/pattern/pattern_loader.h"
 
+#include "core/json_reader.h"
+
 #include <Eigen/Geometry>
 #include <cmath>
 #include <fstream>
@@ -215,29 +217,6 @@ void readStitches(Pattern& pattern, const Json& patternJson, const JsonFields& f
   }
 }
 
-// "[json.exception.parse_error.101] parse error at line 1, column 2: ..." -> "parse error at line 1, column 2: ...".
-std::string parseErrorText(const std::string& what) {
-  const size_t close = what.find("] ");
-  return close != std::string::npos && !what.empty() && what[0] == '[' ? what.substr(close + 2) : what;
-}
-
-// " (non-finite number at line L, column C)" for the first occurrence of the quoted token in what, or "".
-std::string overflowLocation(const std::string& text, const std::string& what) {
-  const size_t open = what.find('\'');
-  const size_t close = open == std::string::npos ? open : what.find('\'', open + 1);
-  if (close == std::string::npos || close == open + 1) return "";
-  const size_t at = text.find(what.substr(open + 1, close - open - 1));
-  if (at == std::string::npos) return "";
-  int line = 1;
-  size_t lineStart = 0;
-  for (size_t i = 0; i < at; ++i)
-    if (text[i] == '\n') {
-      ++line;
-      lineStart = i + 1;
-    }
-  return " (non-finite number at line " + std::to_string(line) + ", column " + std::to_string(at - lineStart + 1) + ")";
-}
-
 }  // namespace
 
 Pattern parsePattern(const std::string& jsonText, const std::string& source, Diagnostics* diagnostics) {
@@ -248,11 +227,8 @@ Pattern parsePattern(const std::string& jsonText, const std::string& source, Dia
   Json root;
   try {
     root = Json::parse(jsonText);
-  } catch (const Json::parse_error& e) {
-    f.fail("", "invalid JSON: " + parseErrorText(e.what()));
   } catch (const Json::exception& e) {
-    // nlohmann reports a number too large for a double ("number overflow parsing '1e999'") without a position.
-    f.fail("", "invalid JSON: " + parseErrorText(e.what()) + overflowLocation(jsonText, e.what()));
+    f.fail("", "invalid JSON: " + json::describeParseFailure(jsonText, e));
   }
   f.expectObject(root, "", "the top level");
   const Json& patternJson = f.member(root, "pattern", "");
