@@ -27,6 +27,9 @@ ContactTerms makeContactTerms(const Scene& scene, const Garment& garment,
     setup.frictionCoefficient = mu;
   }
   terms.energies = collision::makeContactEnergies(setup, garment.vertexCount(), garment.triangles, garment.stitchPairs);
+  for (const auto& energy : terms.energies)
+    if (const auto* avatar = dynamic_cast<const collision::AvatarContactEnergy*>(energy.get()))
+      terms.avatarEnergy = avatar;
   return terms;
 }
 
@@ -43,6 +46,8 @@ Eigen::VectorXi contactMask(const ContactTerms& terms, const Eigen::VectorXd& x)
   return mask;
 }
 
-int countContacts(const ContactTerms& terms, const Eigen::VectorXd& x) { return contactMask(terms, x).sum(); }
+int countContacts(const ContactTerms& terms, const Eigen::VectorXd& x) {
+  return terms.avatarEnergy ? static_cast<int>(terms.avatarEnergy->contacts(x).size()) : 0;
+}
 
 }  // namespace drape

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "drape/collision/avatar_collider.h"
+#include "drape/collision/avatar_contact.h"
 #include "drape/garment/garment.h"
 #include "drape/newton/energy.h"
 #include "drape/scene/scene.h"
@@ -16,14 +17,19 @@ struct ContactTerms {
   std::shared_ptr<const collision::AvatarCollider> collider;  // null when the scene has no collider
   double thickness = 0.0;                                     // metres
   std::vector<std::unique_ptr<newton::Energy>> energies;      // handed over to the solver
+  // The avatar contact energy among them (owned by the solver once handed over), null without a collider.
+  const collision::AvatarContactEnergy* avatarEnergy = nullptr;
 };
 
 // collider: the scene's merged collider (null when it has none), shared with the preview solver.
 ContactTerms makeContactTerms(const Scene& scene, const Garment& garment,
                               std::shared_ptr<const collision::AvatarCollider> collider);
 
-// |V| mask, 1 where the garment vertex (x flat, 3|V|) is within the contact thickness of a collider.
+// |V| mask, 1 where the garment vertex (x flat, 3|V|) is within 1.5 contact thicknesses of a collider (a fresh
+// query per vertex: for snapshots, not for every step).
 Eigen::VectorXi contactMask(const ContactTerms& terms, const Eigen::VectorXd& x);
+// Garment vertices closer than the contact thickness at x, from the avatar contact energy's own (cached)
+// contact set; 0 without a collider.
 int countContacts(const ContactTerms& terms, const Eigen::VectorXd& x);
 
 }  // namespace drape

@@ -59,7 +59,7 @@ pd::PreviewSettings previewSettingsFrom(const Scene& scene) {
                                                                           : pd::GlobalSolverKind::DomainDecomposed;
   p.contactSolve = s.text("solver.preview.contact_solve") == "pcg" ? pd::ContactSolveKind::Pcg
                                                                    : pd::ContactSolveKind::DualThenPcg;
-  p.contactThickness = contactThickness(scene);
+  p.contactThickness = drape::contactThickness(scene);
   return p;
 }
 
@@ -117,6 +117,8 @@ std::vector<std::string> Simulation::terms() const {
   if (m_solver->collider) t.push_back("pd_avatar_contact");
   return t;
 }
+
+double Simulation::contactThickness() const { return drape::contactThickness(m_scene); }
 
 double Simulation::time() const {
   return m_solver->preview ? m_solver->preview->time() : m_solver->previewTime + m_solver->newton->time();
@@ -212,7 +214,7 @@ Snapshot Simulation::snapshot() const {
     for (int v = 0; v < m_garment.vertexCount(); ++v) x.segment<3>(3 * v) = s.positions.row(v).transpose();
     ContactTerms probe;
     probe.collider = m_solver->collider;
-    probe.thickness = contactThickness(m_scene);
+    probe.thickness = contactThickness();
     s.vertexContact = contactMask(probe, x);
   } else {
     s.vertexContact = contactMask(m_solver->contact, m_solver->newton->positions());

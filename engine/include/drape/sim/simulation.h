@@ -63,6 +63,8 @@ class Simulation {
   Eigen::MatrixX3d positions() const;  // |V| x 3, metres
   double time() const;
   int steps() const { return m_steps; }
+  // Contact thickness the solvers use, metres (contact.thickness, else the thickest fabric, at least 2 mm).
+  double contactThickness() const;
 
  private:
   struct Solver;
