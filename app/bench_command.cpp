@@ -58,9 +58,7 @@ RunResult runOnce(const CliOptions& options, std::vector<std::pair<std::string, 
   const TriangleMesh colliders = mergedColliders(simulation.scene());
   if (colliders.triangleCount() > 0) {
     const collision::AvatarCollider collider(colliders);
-    const double depth = simulation.scene().settings.has("contact.thickness")
-                             ? simulation.scene().settings.number("contact.thickness")
-                             : std::max(simulation.scene().fabric.thickness, 2e-3);
+    const double depth = simulation.contactThickness();
     for (int v = 0; v < r.positions.rows(); ++v)
       if (collider.signedDistance(r.positions.row(v).transpose()) < -depth) ++r.penetrations;
   }
