@@ -40,11 +40,15 @@ TEST(CliSimulate, DrapeWritesGarmentAndPerStepStats) {
 
 TEST(CliSimulate, ColliderSceneUsesContactAndFriction) {
   const auto stats = kScratch / "tablecloth.json";
+  // The cloth starts 0.2 m above the sphere: after 0.4 s it lies on it.
   auto r = drape("--simulate " + asset("scenes/tablecloth.json") + " --set mesh.target_edge_length=0.1" +
-                 " --max-sim-time 0.005 -o " + quote((kScratch / "tc.obj").string()) + " --stats " +
+                 " --max-sim-time 0.4 -o " + quote((kScratch / "tc.obj").string()) + " --stats " +
                  quote(stats.string()));
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  const auto terms = nlohmann::json::parse(readWhole(stats)).at("terms").get<std::vector<std::string>>();
+  const auto report = nlohmann::json::parse(readWhole(stats));
+  EXPECT_EQ(report.at("per_step")[0].at("contacts"), 0);
+  EXPECT_GT(report.at("final").at("contacts").get<int>(), 0);
+  const auto terms = report.at("terms").get<std::vector<std::string>>();
   EXPECT_NE(std::find(terms.begin(), terms.end(), "avatar_contact"), terms.end());
   EXPECT_NE(std::find(terms.begin(), terms.end(), "friction"), terms.end());
   auto frictionless = drape("--simulate " + asset("scenes/tablecloth.json") +
