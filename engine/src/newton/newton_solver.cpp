@@ -57,7 +57,8 @@ NewtonSolver::NewtonSolver(ClothModel model, NewtonSettings settings, std::vecto
     std::vector<Eigen::Vector3d> targets = m_model.pinTargets;
     if (targets.empty())
       for (int v : m_model.pinned) targets.push_back(m_x.segment<3>(3 * v));
-    m_energies.push_back(std::make_unique<PinSprings>(m_model.pinned, targets, m_settings.pinStiffness));
+    m_energies.push_back(std::make_unique<PinSprings>(m_model.pinned, targets, m_settings.pinStiffness,
+                                                      m_model.pinTrajectory, m_model.startTime));
   }
   if (m_model.gravity.squaredNorm() > 0.0) m_energies.push_back(std::make_unique<Gravity>(m_mass, m_model.gravity));
   if (m_settings.alpha > 0.0) m_energies.push_back(std::make_unique<AirDrag>(m_mass, m_settings.alpha));
@@ -81,6 +82,21 @@ AssemblyOptions NewtonSolver::assemblyOptions() const {
   o.cachedBlockMap = m_settings.cachedBlockMap;
   o.parallel = m_settings.parallelAssembly;
   return o;
+}
+
+void NewtonSolver::setDrag(int vertex, const Eigen::Vector3d& target) {
+  if (vertex >= m_model.numVertices()) throw std::invalid_argument("drag: vertex index out of range");
+  if (!m_drag) {
+    if (vertex < 0) return;
+    auto drag = std::make_unique<PinSprings>(std::vector<int>{}, std::vector<Eigen::Vector3d>{}, m_settings.pinStiffness,
+                                             PinSprings::Trajectory{}, 0.0, "drag");
+    m_drag = drag.get();
+    m_energies.push_back(std::move(drag));
+  }
+  if (vertex < 0)
+    m_drag->setPins({}, {});
+  else
+    m_drag->setPins({vertex}, {target});
 }
 
 std::vector<std::string> NewtonSolver::energyNames() const {

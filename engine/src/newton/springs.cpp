@@ -40,8 +40,26 @@ double StitchSprings::maxGap(const Eigen::VectorXd& x) const {
   return gap;
 }
 
-PinSprings::PinSprings(std::vector<int> vertices, std::vector<Eigen::Vector3d> targets, double stiffness)
-    : m_vertices(std::move(vertices)), m_targets(std::move(targets)), m_stiffness(stiffness) {}
+PinSprings::PinSprings(std::vector<int> vertices, std::vector<Eigen::Vector3d> targets, double stiffness,
+                       Trajectory trajectory, double timeOffset, std::string name)
+    : m_vertices(std::move(vertices)),
+      m_targets(std::move(targets)),
+      m_stiffness(stiffness),
+      m_trajectory(std::move(trajectory)),
+      m_timeOffset(timeOffset),
+      m_name(std::move(name)) {}
+
+void PinSprings::beginStep(const StepContext& ctx) {
+  if (!m_trajectory) return;
+  const double t = m_timeOffset + ctx.time + ctx.h;  // end of the step: backward Euler pulls towards it
+  for (size_t k = 0; k < m_vertices.size(); ++k) m_targets[k] = m_trajectory(static_cast<int>(k), t);
+}
+
+void PinSprings::setPins(std::vector<int> vertices, std::vector<Eigen::Vector3d> targets) {
+  m_vertices = std::move(vertices);
+  m_targets = std::move(targets);
+  m_trajectory = {};
+}
 
 double PinSprings::value(const Eigen::VectorXd& x) const {
   double sum = 0.0;

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <tbb/parallel_for.h>
 
@@ -269,6 +270,13 @@ Eigen::MatrixX3d PdSystem::rhs(const Eigen::MatrixX3d& z,
   });
   if (m_kfp.cols() > 0) b -= m_kfp * m_pinTargets;
   return b;
+}
+
+void PdSystem::setPinTargets(const Eigen::MatrixX3d& targets) {
+  if (targets.rows() != m_pinTargets.rows())
+    throw std::invalid_argument("pd system: " + std::to_string(targets.rows()) + " pin targets for " +
+                                std::to_string(m_pinTargets.rows()) + " pins");
+  m_pinTargets = targets;
 }
 
 }  // namespace drape::pd

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
+#include <stdexcept>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -56,8 +58,16 @@ struct PreviewSolver::Impl {
   std::vector<StrainTarget> targets;
   std::atomic<bool> cancel{false};
   double time = 0.0;
+  // Moving pins: trajectory of model pin p at scene time startTime + time; pinSource[k] = p of pinned row k.
+  std::function<Eigen::Vector3d(int, double)> pinTrajectory;
+  double startTime = 0.0;
+  std::vector<int> pinSource;
+  int dragDof = -1;  // free DOF of the grabbed vertex, -1 = none
+  Eigen::Vector3d dragTarget = Eigen::Vector3d::Zero();
 
   PreviewReport step();
+  // Appends the grabbed vertex's constraint (replacing a contact on the same DOF).
+  void addDrag(ContactSet& contacts) const;
   void detectContacts(const Eigen::MatrixX3d& xFree, const std::vector<int>& candidates, ContactSet& out) const;
 };
 
@@ -75,6 +85,10 @@ PreviewSolver::PreviewSolver(const newton::ClothModel& model, const PreviewSetti
   im.v = model.velocities.size() == 3 * nv ? asRows(model.velocities, nv) : Eigen::MatrixX3d::Zero(nv, 3);
   const auto& pins = im.system->pinnedVertices();
   for (size_t p = 0; p < pins.size(); ++p) im.x.row(pins[p]) = im.system->pinTargets().row(static_cast<int>(p));
+  im.pinTrajectory = model.pinTrajectory;
+  im.startTime = model.startTime;
+  for (int vtx : pins)
+    im.pinSource.push_back(static_cast<int>(std::find(model.pinned.begin(), model.pinned.end(), vtx) - model.pinned.begin()));
   const int requested = settings.domains > 0 ? settings.domains : threads;
   im.domains = std::clamp(requested, 1, std::max(im.system->triangleCount(), 1));
   im.arena->execute([&] {
@@ -131,6 +145,12 @@ PreviewReport PreviewSolver::Impl::step() {
   const auto start = Clock::now();
   PreviewReport rep;
   rep.domains = domains;
+  if (pinTrajectory) {  // pins where they are at the end of the step
+    Eigen::MatrixX3d moved(static_cast<int>(pinSource.size()), 3);
+    for (size_t k = 0; k < pinSource.size(); ++k)
+      moved.row(static_cast<int>(k)) = pinTrajectory(pinSource[k], startTime + time + system->timeStep()).transpose();
+    system->setPinTargets(moved);
+  }
   const PdSystem& sys = *system;
   const double h = sys.timeStep();
   const auto& freeVertices = sys.freeVertices();
@@ -198,9 +218,11 @@ PreviewReport PreviewSolver::Impl::step() {
     global->solve(b, xFree);
     auto t2 = Clock::now();
     rep.globalTime += seconds(t1, t2);
-    if (!candidates.empty()) {
-      detectContacts(xFree, candidates, contacts);
+    if (!candidates.empty() || dragDof >= 0) {
+      if (!candidates.empty()) detectContacts(xFree, candidates, contacts);
+      else contacts = ContactSet{};
       rep.contacts = contacts.size();
+      addDrag(contacts);
       const ContactSolveStats cs = solveWithContacts(sys.matrix(), *global, contacts, settings.contactSolve,
                                                      settings.maxPcgIterations, settings.pcgTolerance, xFree);
       rep.sdIterations += cs.sdIterations;
@@ -235,7 +257,30 @@ PreviewReport PreviewSolver::Impl::step() {
   return rep;
 }
 
+void PreviewSolver::Impl::addDrag(ContactSet& contacts) const {
+  if (dragDof < 0) return;
+  auto it = std::find(contacts.dofs.begin(), contacts.dofs.end(), dragDof);
+  if (it != contacts.dofs.end()) {
+    const int k = static_cast<int>(it - contacts.dofs.begin());
+    contacts.targets.row(k) = dragTarget.transpose();
+    contacts.weights[k] = settings.dragWeight;
+    return;
+  }
+  contacts.dofs.push_back(dragDof);
+  contacts.weights.push_back(settings.dragWeight);
+  contacts.targets.conservativeResize(contacts.size(), 3);
+  contacts.targets.row(contacts.size() - 1) = dragTarget.transpose();
+}
+
+void PreviewSolver::setDrag(int vertex, const Eigen::Vector3d& target) {
+  Impl& im = *m_impl;
+  if (vertex >= im.system->vertexCount()) throw std::invalid_argument("drag: vertex index out of range");
+  im.dragDof = vertex < 0 ? -1 : im.system->dofOfVertex()[vertex];
+  im.dragTarget = target;
+}
+
 void PreviewSolver::requestCancel() { m_impl->cancel = true; }
+void PreviewSolver::clearCancel() { m_impl->cancel = false; }
 const Eigen::VectorXd& PreviewSolver::positions() const { return m_impl->flatX; }
 const Eigen::VectorXd& PreviewSolver::velocities() const { return m_impl->flatV; }
 const std::vector<int>& PreviewSolver::triangleDomain() const { return m_impl->triangleDomain; }

@@ -1,6 +1,7 @@
 #include "scene/scene_parts.h"
 
 #include <cmath>
+#include <cstdint>
 
 #include "core/json_reader.h"
 #include "drape/core/input_error.h"
@@ -101,6 +102,41 @@ std::vector<Collider> parseColliders(const nlohmann::json& j, const std::string&
   return out;
 }
 
+namespace {
+
+double finiteNumber(const nlohmann::json& j, const char* key, const std::string& where) {
+  if (!j.contains(key) || !j.at(key).is_number() || !std::isfinite(j.at(key).get<double>()))
+    throw InputError(where + ": '" + key + "' must be a number");
+  return j.at(key).get<double>();
+}
+
+// "motion": {"start": s, "end": s, "rotate": {"axis": [..], "center": [..], "degrees": d}, "translate": [..]}
+PinMotion parsePinMotion(const nlohmann::json& m, const std::string& where) {
+  if (!m.is_object()) throw InputError(where + ": expected an object with 'start', 'end', 'rotate' and/or 'translate'");
+  rejectUnknown(m, {"start", "end", "rotate", "translate"}, where);
+  PinMotion motion;
+  motion.start = finiteNumber(m, "start", where);
+  motion.end = finiteNumber(m, "end", where);
+  if (motion.end <= motion.start) throw InputError(where + ": 'end' must be after 'start'");
+  if (!m.contains("rotate") && !m.contains("translate"))
+    throw InputError(where + ": give 'rotate' and/or 'translate'");
+  if (m.contains("rotate")) {
+    const auto& r = m.at("rotate");
+    const std::string at = where + " rotate";
+    if (!r.is_object()) throw InputError(at + ": expected {\"axis\": [..], \"center\": [..], \"degrees\": d}");
+    rejectUnknown(r, {"axis", "center", "degrees"}, at);
+    motion.axis = vec3(r, "axis", at);
+    if (motion.axis.norm() < 1e-12) throw InputError(at + ": 'axis' must not be zero");
+    motion.axis.normalize();
+    motion.center = vec3(r, "center", at);
+    motion.angle = finiteNumber(r, "degrees", at) * M_PI / 180.0;
+  }
+  if (m.contains("translate")) motion.translation = vec3(m, "translate", where);
+  return motion;
+}
+
+}  // namespace
+
 std::vector<PinSpec> parsePins(const nlohmann::json& j, const Pattern& pattern, const std::string& where) {
   if (!j.is_array()) throw InputError(where + ": 'pins' must be a list");
   std::vector<PinSpec> out;
@@ -109,9 +145,10 @@ std::vector<PinSpec> parsePins(const nlohmann::json& j, const Pattern& pattern, 
     PinSpec pin;
     pin.where = where + ": pin " + std::to_string(i);
     if (!p.is_object()) throw InputError(pin.where + ": expected an object");
-    rejectUnknown(p, {"panel", "edge", "edge_label", "region"}, pin.where);
+    rejectUnknown(p, {"panel", "edge", "edge_label", "region", "vertices", "motion"}, pin.where);
+    const int kinds = int(p.contains("region")) + int(p.contains("panel")) + int(p.contains("vertices"));
+    if (kinds != 1) throw InputError(pin.where + ": give exactly one of 'panel' (with an edge), 'region' or 'vertices'");
     if (p.contains("region")) {
-      if (p.contains("panel")) throw InputError(pin.where + ": give either 'region' or 'panel', not both");
       const auto& r = p.at("region");
       if (!r.is_object()) throw InputError(pin.where + ": 'region' must be {\"min\": [..], \"max\": [..]}");
       pin.byRegion = true;
@@ -119,6 +156,14 @@ std::vector<PinSpec> parsePins(const nlohmann::json& j, const Pattern& pattern, 
       pin.region.max = vec3(r, "max", pin.where + " region");
       if ((pin.region.max.array() < pin.region.min.array()).any())
         throw InputError(pin.where + ": region 'max' is below 'min'");
+    } else if (p.contains("vertices")) {
+      const auto& vs = p.at("vertices");
+      if (!vs.is_array() || vs.empty()) throw InputError(pin.where + ": 'vertices' must be a non-empty list of indices");
+      for (size_t k = 0; k < vs.size(); ++k) {
+        if (!vs[k].is_number_integer() || vs[k].get<long long>() < 0 || vs[k].get<long long>() > INT32_MAX)
+          throw InputError(pin.where + ": vertices[" + std::to_string(k) + "] must be a vertex index (an integer >= 0)");
+        pin.vertices.push_back(vs[k].get<int>());
+      }
     } else {
       pin.panel = json::text(p, "panel", pin.where);
       const int panel = pattern.panelIndex(pin.panel);
@@ -140,6 +185,10 @@ std::vector<PinSpec> parsePins(const nlohmann::json& j, const Pattern& pattern, 
           throw InputError(pin.where + ": panel '" + pin.panel + "' has no edge labelled '" + pin.edgeLabel + "'");
         pin.edge = static_cast<int>(it - edges.begin());
       }
+    }
+    if (p.contains("motion")) {
+      pin.moving = true;
+      pin.motion = parsePinMotion(p.at("motion"), pin.where + " motion");
     }
     out.push_back(pin);
   }

@@ -1,6 +1,9 @@
 #include "sim/cloth_model_builder.h"
 
 #include <algorithm>
+#include <optional>
+
+#include "drape/scene/pins.h"
 
 namespace drape {
 namespace {
@@ -39,6 +42,19 @@ newton::ClothModel buildClothModel(const Scene& scene, const Garment& garment, c
   for (int v = 0; v < garment.vertexCount(); ++v) model.positions.segment<3>(3 * v) = garment.positions.row(v);
   model.stitches = garment.stitchPairs;
   model.pinned = pinned;
+  // Moving pins: each follows its pin's motion from where the garment places it.
+  const std::vector<int> motionOf = pinMotionIndex(scene, garment, pinned);
+  if (std::any_of(motionOf.begin(), motionOf.end(), [](int m) { return m >= 0; })) {
+    std::vector<std::optional<PinMotion>> motions(pinned.size());
+    std::vector<Eigen::Vector3d> initial(pinned.size());
+    for (size_t k = 0; k < pinned.size(); ++k) {
+      initial[k] = garment.positions.row(pinned[k]).transpose();
+      if (motionOf[k] >= 0) motions[k] = scene.pins[motionOf[k]].motion;
+    }
+    model.pinTrajectory = [motions, initial](int k, double t) -> Eigen::Vector3d {
+      return motions[k] ? motions[k]->at(initial[k], t) : initial[k];
+    };
+  }
   model.gravity = Eigen::Vector3d(0.0, scene.settings.number("sim.gravity"), 0.0);
   return model;
 }

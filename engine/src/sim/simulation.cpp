@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <stdexcept>
 
 #include "drape/garment/garment_builder.h"
 #include "drape/geometry/strain.h"
@@ -31,7 +32,9 @@ struct Simulation::Solver {
   std::unique_ptr<newton::NewtonSolver> newton;  // once the stage is "drape"
   ContactTerms contact;                          // the drape's contact terms (energies moved into newton)
   Eigen::VectorXd masses;                        // |V| lumped, kg
-  double previewTime = 0.0;                      // simulated seconds spent in the preview
+  double previewOffset = 0.0;                    // scene time at the preview solver's time 0, s
+  double previewTime = 0.0;                      // scene time at which the drape started, s
+  Eigen::MatrixX3d previewPositions;             // the state the drape started from; no rows = placed garment
 };
 
 namespace {
@@ -73,7 +76,13 @@ double percentile99(std::vector<double> values) {
 
 }  // namespace
 
-Simulation::Simulation(Scene scene) : m_scene(std::move(scene)) {
+Simulation::Simulation(Scene scene) : m_scene(std::move(scene)) { build(nullptr); }
+
+Simulation::Simulation(Scene scene, const ResumeState& from) : m_scene(std::move(scene)) { build(&from); }
+
+Simulation::~Simulation() = default;
+
+void Simulation::build(const ResumeState* from) {
   Diagnostics diagnostics;
   m_garment = buildGarment(m_scene.pattern, {m_scene.settings.number("mesh.target_edge_length")}, &diagnostics);
   m_scene.diagnostics.append(diagnostics);
@@ -85,26 +94,69 @@ Simulation::Simulation(Scene scene) : m_scene(std::move(scene)) {
   if (m_colliderMesh.triangleCount() > 0)
     m_solver->collider = std::make_shared<const collision::AvatarCollider>(m_colliderMesh);
   const std::string& stage = m_scene.settings.text("solver.stage");
-  if (stage == "preview" || stage == "full")
+  const bool runsPreview = stage == "preview" || stage == "full";
+  if (from && from->vertexCount != m_garment.vertexCount()) from = nullptr;  // re-meshed: start over
+  m_resumed = from != nullptr;
+  if (from && from->stage == "preview" && runsPreview) {
+    newton::ClothModel model = m_solver->model;
+    for (int v = 0; v < m_garment.vertexCount(); ++v) {
+      model.positions.segment<3>(3 * v) = from->positions.row(v).transpose();
+    }
+    model.velocities.resize(3 * m_garment.vertexCount());
+    for (int v = 0; v < m_garment.vertexCount(); ++v)
+      model.velocities.segment<3>(3 * v) = from->velocities.row(v).transpose();
+    model.startTime = from->time;
+    m_solver->previewOffset = from->time;
+    m_solver->preview = std::make_unique<pd::PreviewSolver>(model, previewSettingsFrom(m_scene), m_solver->collider);
+  } else if (from && from->stage == "drape") {
+    startDrape(from->previewPositions, from->previewPositions.rows() > 0 ? from->previewTime : 0.0);
+  } else if (runsPreview) {
+    m_resumed = false;
     m_solver->preview =
         std::make_unique<pd::PreviewSolver>(m_solver->model, previewSettingsFrom(m_scene), m_solver->collider);
-  else
-    startDrape();
+  } else {
+    m_resumed = false;
+    startDrape(Eigen::MatrixX3d(), 0.0);
+  }
 }
 
-Simulation::~Simulation() = default;
-
-void Simulation::startDrape() {
+void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
   newton::ClothModel model = m_solver->model;
-  if (m_solver->preview) {
-    model.positions = m_solver->preview->positions();  // warm start; velocities reset
-    m_solver->previewTime = m_solver->preview->time();
-    m_solver->preview.reset();
+  m_solver->preview.reset();
+  m_solver->previewPositions = positions;
+  m_solver->previewTime = time;
+  if (positions.rows() > 0) {  // warm start from the preview; velocities reset
+    for (int v = 0; v < m_garment.vertexCount(); ++v) model.positions.segment<3>(3 * v) = positions.row(v).transpose();
   }
+  model.startTime = time;
   m_solver->contact = makeContactTerms(m_scene, m_garment, m_solver->collider);
   m_solver->newton = std::make_unique<newton::NewtonSolver>(std::move(model), newtonSettingsFrom(m_scene.settings),
                                                             std::move(m_solver->contact.energies));
+  if (m_dragVertex >= 0) m_solver->newton->setDrag(m_dragVertex, m_dragTarget);
   m_atRest = false;
+}
+
+void Simulation::setDrag(int vertex, const Eigen::Vector3d& target) {
+  if (vertex >= m_garment.vertexCount()) throw std::invalid_argument("drag: vertex index out of range");
+  m_dragVertex = vertex < 0 ? -1 : vertex;
+  m_dragTarget = target;
+  if (m_solver->preview) m_solver->preview->setDrag(m_dragVertex, target);
+  if (m_solver->newton) m_solver->newton->setDrag(m_dragVertex, target);
+  if (m_dragVertex >= 0) m_atRest = false;  // a pulled garment is not at rest
+}
+
+ResumeState Simulation::resumeState() const {
+  ResumeState r;
+  r.stage = stage();
+  r.vertexCount = m_garment.vertexCount();
+  r.positions = positions();
+  const Eigen::VectorXd& v = m_solver->preview ? m_solver->preview->velocities() : m_solver->newton->velocities();
+  r.velocities.resize(m_garment.vertexCount(), 3);
+  for (int i = 0; i < m_garment.vertexCount(); ++i) r.velocities.row(i) = v.segment<3>(3 * i).transpose();
+  r.time = time();
+  r.previewPositions = m_solver->previewPositions;
+  r.previewTime = m_solver->previewTime;
+  return r;
 }
 
 std::string Simulation::stage() const { return m_solver->preview ? "preview" : "drape"; }
@@ -121,7 +173,8 @@ std::vector<std::string> Simulation::terms() const {
 double Simulation::contactThickness() const { return drape::contactThickness(m_scene); }
 
 double Simulation::time() const {
-  return m_solver->preview ? m_solver->preview->time() : m_solver->previewTime + m_solver->newton->time();
+  return m_solver->preview ? m_solver->previewOffset + m_solver->preview->time()
+                           : m_solver->previewTime + m_solver->newton->time();
 }
 
 Eigen::MatrixX3d Simulation::positions() const {
@@ -134,6 +187,11 @@ Eigen::MatrixX3d Simulation::positions() const {
 void Simulation::requestCancel() {
   if (m_solver->preview) m_solver->preview->requestCancel();
   if (m_solver->newton) m_solver->newton->requestCancel();
+}
+
+void Simulation::clearCancel() {
+  if (m_solver->preview) m_solver->preview->clearCancel();
+  if (m_solver->newton) m_solver->newton->clearCancel();
 }
 
 bool Simulation::finished() const {
@@ -168,20 +226,20 @@ StepReport Simulation::step() {
     }
     report.kineticEnergy = percentile99(std::move(energies));
     // Settled: vertex speeds below the threshold for a 0.1 s window (as the drape's early stop).
-    if (percentile99(std::move(speeds)) < m_scene.settings.number("solver.preview.rest_speed")) {
-      if (m_restSince < 0) m_restSince = preview.time();
+    if (percentile99(std::move(speeds)) < m_scene.settings.number("solver.preview.rest_speed") && m_dragVertex < 0) {
+      if (m_restSince < 0) m_restSince = time();
     } else {
       m_restSince = -1.0;
     }
-    const bool settled = m_restSince >= 0 && preview.time() - m_restSince >= 0.1;
-    const bool timeUp = preview.time() >= m_scene.settings.number("solver.preview.max_time") - 1e-12;
-    report.time = preview.time();
+    const bool settled = m_restSince >= 0 && time() - m_restSince >= 0.1;
+    const bool timeUp = time() >= m_scene.settings.number("solver.preview.max_time") - 1e-12;
+    report.time = time();
     ++m_steps;
     if (m_scene.settings.text("solver.stage") == "preview") {
       m_atRest = settled;
       report.atRest = settled;
     } else if ((settled || timeUp) && report.status != StepStatus::Diverged) {
-      startDrape();
+      startDrape(positions(), time());
     }
   } else {
     const newton::NewtonStepReport r = m_solver->newton->step();
@@ -220,7 +278,7 @@ Snapshot Simulation::snapshot() const {
     s.vertexContact = contactMask(m_solver->contact, m_solver->newton->positions());
   }
   s.time = time();
-  s.stage = m_atRest ? "done" : (m_steps == 0 ? "placed" : stage());
+  s.stage = m_atRest ? "done" : (m_steps == 0 && !m_resumed ? "placed" : stage());
   return s;
 }
 

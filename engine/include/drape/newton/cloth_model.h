@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -27,6 +28,10 @@ struct ClothModel {
   std::vector<std::pair<int, int>> stitches;  // vertex pairs pulled together by zero-length springs
   std::vector<int> pinned;                // pinned vertex indices
   std::vector<Eigen::Vector3d> pinTargets;  // per pinned vertex, metres; empty = initial positions
+  // Moving pins: target of pinned[k] at simulated time t (seconds, on the scene's clock), metres. Empty = every
+  // pin holds its target for the whole run.
+  std::function<Eigen::Vector3d(int k, double t)> pinTrajectory;
+  double startTime = 0.0;  // scene time of positions/velocities, s (a drape started from the preview's state)
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, -9.81, 0.0);  // m/s^2
 
   int numVertices() const { return static_cast<int>(restCoords.rows()); }

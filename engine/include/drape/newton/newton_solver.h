@@ -46,6 +46,8 @@ struct NewtonSettings {
   bool parallelAssembly = true;
 };
 
+class PinSprings;
+
 enum class NewtonStatus { Converged, MaxIterations, Diverged, Cancelled };
 const char* toString(NewtonStatus status);
 
@@ -81,6 +83,9 @@ class NewtonSolver {
   NewtonStepReport step();
   void requestCancel() { m_cancel.store(true); }
   void clearCancel() { m_cancel.store(false); }
+  // A spring of settings.pinStiffness pulling vertex towards target, metres (a grabbed vertex following the
+  // cursor); vertex < 0 releases it. The "drag" energy exists from the first call on.
+  void setDrag(int vertex, const Eigen::Vector3d& target);
 
   const Eigen::VectorXd& positions() const { return m_x; }   // 3|V|, metres
   const Eigen::VectorXd& velocities() const { return m_v; }  // 3|V|, m/s
@@ -107,6 +112,7 @@ class NewtonSolver {
   ClothModel m_model;
   NewtonSettings m_settings;
   std::vector<std::unique_ptr<Energy>> m_energies;
+  PinSprings* m_drag = nullptr;  // owned by m_energies
   BlockMatrix m_matrix;
   Eigen::VectorXd m_mass;
   Eigen::VectorXd m_x, m_v;

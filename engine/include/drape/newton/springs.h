@@ -2,6 +2,8 @@
 // Pins are stiff springs rather than removed DOFs, so every vertex stays a degree of freedom.
 #pragma once
 
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "drape/newton/energy.h"
@@ -26,19 +28,30 @@ class StitchSprings : public Energy {
 };
 
 // E = sum 0.5 k |x_i - p_i|^2 over pinned vertices with targets p_i (metres); k in N/m.
+// With a trajectory, every step moves the targets to where the pins are at the end of the step.
 class PinSprings : public Energy {
  public:
-  PinSprings(std::vector<int> vertices, std::vector<Eigen::Vector3d> targets, double stiffness);
-  std::string_view name() const override { return "pins"; }
+  using Trajectory = std::function<Eigen::Vector3d(int k, double t)>;
+  // trajectory(k, t): target of vertices[k] at scene time t; timeOffset: scene time at the solver's time 0, s.
+  PinSprings(std::vector<int> vertices, std::vector<Eigen::Vector3d> targets, double stiffness,
+             Trajectory trajectory = {}, double timeOffset = 0.0, std::string name = "pins");
+  std::string_view name() const override { return m_name; }
+  void beginStep(const StepContext& ctx) override;
   double value(const Eigen::VectorXd& x) const override;
   void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
   void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const override;
   void setTarget(int k, const Eigen::Vector3d& p) { m_targets[k] = p; }
+  // Replaces the pinned set (a dragged vertex: one spring to the cursor; none when released).
+  void setPins(std::vector<int> vertices, std::vector<Eigen::Vector3d> targets);
+  const std::vector<Eigen::Vector3d>& targets() const { return m_targets; }
 
  private:
   std::vector<int> m_vertices;
   std::vector<Eigen::Vector3d> m_targets;
   double m_stiffness;
+  Trajectory m_trajectory;
+  double m_timeOffset;
+  std::string m_name;
 };
 
 }  // namespace drape::newton

@@ -55,6 +55,8 @@ class PdSystem {
   const std::vector<int>& freeVertices() const { return m_freeVertices; }
   const std::vector<int>& pinnedVertices() const { return m_pinned; }
   const Eigen::MatrixX3d& pinTargets() const { return m_pinTargets; }  // |pinned| x 3, metres
+  // Moves the pins (the matrix does not depend on where they are). targets: |pinned| x 3, metres.
+  void setPinTargets(const Eigen::MatrixX3d& targets);
   const Eigen::VectorXd& masses() const { return m_mass; }             // |V|, kg
   double timeStep() const { return m_h; }
   const std::vector<StrainConstraint>& strains() const { return m_strains; }

@@ -45,6 +45,10 @@ struct PreviewSettings {
   ContactSolveKind contactSolve = ContactSolveKind::DualThenPcg;
   int maxPcgIterations = 20;
   double pcgTolerance = 1e-6;       // relative residual of eq. 14
+
+  // A grabbed vertex is pulled towards the cursor by a position constraint of this weight, N/m, solved with
+  // the contacts (no refactorisation).
+  double dragWeight = 1e4;
 };
 
 }  // namespace drape::pd

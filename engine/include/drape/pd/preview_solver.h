@@ -51,6 +51,10 @@ class PreviewSolver {
   PreviewReport step();
   // Thread-safe; checked between L-G iterations.
   void requestCancel();
+  void clearCancel();
+  // Pulls vertex towards target (metres) with settings.dragWeight from the next step on (a grabbed vertex);
+  // vertex < 0 releases it. A pinned vertex cannot be dragged (ignored).
+  void setDrag(int vertex, const Eigen::Vector3d& target);
 
   const Eigen::VectorXd& positions() const;   // 3|V|, metres
   const Eigen::VectorXd& velocities() const;  // 3|V|, m/s

@@ -21,14 +21,33 @@ struct Collider {
   TriangleMesh mesh;
 };
 
-// A set of garment vertices held in place: a whole panel edge (by index or label), or every vertex whose placed
-// position lies in an axis-aligned region (metres).
+// Prescribed motion of pinned vertices (the twisting square's rotating side). Between start and end (s) the
+// vertices turn by angle (radians, right-handed about axis) around the line through center and translate by
+// translation (m), both linear in time; before start they hold their initial positions, after end the final ones.
+struct PinMotion {
+  double start = 0.0;
+  double end = 0.0;
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  // unit
+  double angle = 0.0;
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+
+  // Where a vertex that starts at initial (metres) is at scene time t (s).
+  Eigen::Vector3d at(const Eigen::Vector3d& initial, double t) const;
+};
+
+// A set of garment vertices held in place: a whole panel edge (by index or label), every vertex whose placed
+// position lies in an axis-aligned region (metres), or garment vertices by index (pins set in the GUI; indices
+// of the mesh that the scene's mesh settings give). Optionally moving.
 struct PinSpec {
-  std::string panel;      // empty for a region pin
+  std::string panel;      // empty for a region or vertex pin
   int edge = -1;          // edge index, or -1 when edgeLabel is used
   std::string edgeLabel;  // edge "label" from the pattern file
   bool byRegion = false;
   BoundingBox region;
+  std::vector<int> vertices;  // garment vertex indices (a vertex pin when non-empty)
+  bool moving = false;
+  PinMotion motion;   // when moving
   std::string where;  // "scene.json: pin 2", for messages
 };
 

@@ -38,10 +38,28 @@ struct StepReport {
   bool atRest = false;         // early stop reached
 };
 
+// Where a running simulation is, so that the simulation of an edited scene (another fabric, a pin added in the
+// GUI) can continue from it instead of from the placed garment.
+struct ResumeState {
+  std::string stage;                 // "preview" or "drape" when captured
+  int vertexCount = 0;               // garment vertices; a garment meshed differently cannot resume
+  Eigen::MatrixX3d positions;        // |V| x 3, metres
+  Eigen::MatrixX3d velocities;       // |V| x 3, m/s
+  double time = 0.0;                 // scene time, s
+  Eigen::MatrixX3d previewPositions;  // the state the preview handed to the drape; no rows when the drape
+                                      // started from the placed garment
+  double previewTime = 0.0;          // scene time of previewPositions, s
+};
+
 class Simulation {
  public:
   // Builds the garment, pins and the solver terms the scene needs; throws InputError for bad scenes.
   explicit Simulation(Scene scene);
+  // The same for an edited scene, continuing from `from` when the garment has the same vertex count: a preview
+  // continues from its current positions, velocities and time (when the scene's stage runs a preview); a drape
+  // restarts from the last preview state (previewPositions), else from the placed garment. resumed() tells
+  // whether the state was used.
+  Simulation(Scene scene, const ResumeState& from);
   ~Simulation();
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
@@ -53,6 +71,16 @@ class Simulation {
   bool finished() const;
   Snapshot snapshot() const;
   void requestCancel();
+  // Forgets a cancel request (after a cancelled step, so that the next step runs).
+  void clearCancel();
+
+  // A grabbed garment vertex pulled towards target (metres) by a spring, from the next step on; vertex < 0
+  // releases it. Survives the switch from the preview to the drape. Throws std::invalid_argument when out of range.
+  void setDrag(int vertex, const Eigen::Vector3d& target);
+  int draggedVertex() const { return m_dragVertex; }
+
+  ResumeState resumeState() const;
+  bool resumed() const { return m_resumed; }
 
   const Scene& scene() const { return m_scene; }
   const Garment& garment() const { return m_garment; }
@@ -75,9 +103,14 @@ class Simulation {
   std::unique_ptr<Solver> m_solver;
   int m_steps = 0;
   bool m_atRest = false;
+  bool m_resumed = false;
   double m_restSince = -1.0;  // preview: time the settle criterion started to hold
+  int m_dragVertex = -1;
+  Eigen::Vector3d m_dragTarget = Eigen::Vector3d::Zero();
 
-  void startDrape();
+  void build(const ResumeState* from);
+  // Starts the Newton drape from positions (|V| x 3; no rows = the placed garment) at scene time `time`.
+  void startDrape(const Eigen::MatrixX3d& positions, double time);
 };
 
 }  // namespace drape
