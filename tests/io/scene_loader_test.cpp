@@ -1,6 +1,8 @@
 // Scene files: good scenes load with their parts resolved; each malformed scene names the file and the element.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 
 #include "drape/core/input_error.h"
@@ -77,6 +79,61 @@ TEST(SceneLoader, EdgePinSelectsTheWholeEdge) {
   for (int v : pinned) EXPECT_NEAR(garment.positions(v, 1), 1.5, 1e-9);
 }
 
+TEST(SceneLoader, VertexPinsAndPinMotionLoad) {
+  SceneRequest request;
+  request.input = testOutputDir() / "moving_pin_scene.json";
+  {
+    std::ofstream out(request.input);
+    out << R"({"pattern": ")" << (assetsDir() / "patterns" / "hanging_cloth.json").string()
+        << R"(", "pins": [{"vertices": [3, 1, 3]},
+                          {"panel": "cloth", "edge_label": "top",
+                           "motion": {"start": 0.5, "end": 1.5, "translate": [0, 0.2, 0],
+                                      "rotate": {"axis": [0, 0, 2], "center": [0, 1, 0], "degrees": 90}}}],
+              "mesh": {"target_edge_length": 0.1}})";
+  }
+  const Scene scene = loadScene(request);
+  ASSERT_EQ(scene.pins.size(), 2u);
+  EXPECT_EQ(scene.pins[0].vertices, (std::vector<int>{3, 1, 3}));
+  EXPECT_FALSE(scene.pins[0].moving);
+  ASSERT_TRUE(scene.pins[1].moving);
+  const PinMotion& m = scene.pins[1].motion;
+  EXPECT_NEAR(m.angle, M_PI / 2, 1e-12);
+  EXPECT_NEAR(m.axis.z(), 1.0, 1e-12);  // normalised
+  const Garment garment = buildGarment(scene.pattern, {0.1});
+  const auto pinned = resolvePins(scene, garment);
+  std::vector<int> expected = garment.edgeVertices.at(0).at(scene.pins[1].edge);
+  expected.insert(expected.end(), {1, 3});
+  std::sort(expected.begin(), expected.end());
+  expected.erase(std::unique(expected.begin(), expected.end()), expected.end());
+  EXPECT_EQ(pinned, expected);
+  const auto motion = pinMotionIndex(scene, garment, pinned);
+  for (size_t k = 0; k < pinned.size(); ++k) {
+    const bool onTop = std::abs(garment.positions(pinned[k], 1) - 1.5) < 1e-9;
+    EXPECT_EQ(motion[k], onTop ? 1 : -1) << "vertex " << pinned[k];
+  }
+}
+
+TEST(PinMotion, RotatesAndTranslatesLinearlyInTime) {
+  PinMotion m;
+  m.start = 0.5;
+  m.end = 1.5;
+  m.center = Eigen::Vector3d(0, 1, 0);
+  m.axis = Eigen::Vector3d::UnitX();
+  m.angle = 0.75 * M_PI;
+  m.translation = Eigen::Vector3d(0.1, 0, 0);
+  const Eigen::Vector3d p0(0.5, 1.0, 0.3);
+  EXPECT_TRUE(m.at(p0, 0.0).isApprox(p0));
+  EXPECT_TRUE(m.at(p0, 0.5).isApprox(p0));
+  // A right-handed turn by th about +x through (0, 1, 0), written out: y' = 1 + (y - 1) cos th - z sin th,
+  // z' = (y - 1) sin th + z cos th; here y - 1 = 0 and z = 0.3.
+  for (double t : {0.75, 1.0, 1.5, 2.5}) {
+    const double s = std::clamp((t - 0.5) / 1.0, 0.0, 1.0);
+    const double th = s * 0.75 * M_PI;
+    const Eigen::Vector3d expected(0.5 + 0.1 * s, 1.0 - 0.3 * std::sin(th), 0.3 * std::cos(th));
+    EXPECT_TRUE(m.at(p0, t).isApprox(expected, 1e-12)) << "t = " << t << ": " << m.at(p0, t).transpose();
+  }
+}
+
 struct BadScene {
   const char* file;
   std::vector<const char*> expected;
@@ -113,6 +170,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"scene_pin_edge_out_of_range.json", {"pin 0", "has no edge 7"}},
         BadScene{"scene_pin_unknown_label.json", {"pin 0", "no edge labelled 'hem'"}},
         BadScene{"scene_pin_empty_region.json", {"pin 0", "selects no garment vertex"}},
+        BadScene{"scene_pin_vertex_out_of_range.json", {"pin 0", "vertex 99999 is out of range", "vertices"}},
+        BadScene{"scene_pin_negative_vertex.json", {"pin 0", "vertices[1] must be a vertex index"}},
+        BadScene{"scene_pin_two_kinds.json", {"pin 0", "exactly one of 'panel'"}},
+        BadScene{"scene_pin_motion_backwards.json", {"pin 0 motion", "'end' must be after 'start'"}},
+        BadScene{"scene_pin_motion_zero_axis.json", {"pin 0 motion rotate", "'axis' must not be zero"}},
+        BadScene{"scene_pin_motion_unknown_key.json", {"pin 0 motion", "unknown field 'spin'"}},
+        BadScene{"scene_pin_motion_no_motion.json", {"pin 0 motion", "give 'rotate' and/or 'translate'"}},
         BadScene{"scene_panel_fabric_unknown_panel.json", {"panel_fabrics 'sleeve'", "no panel"}},
         BadScene{"scene_mesh_negative_edge.json", {"mesh.target_edge_length", "out of range"}},
         BadScene{"scene_mesh_edge_not_number.json", {"mesh.target_edge_length", "'fine' is not a number"}},
