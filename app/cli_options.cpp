@@ -38,6 +38,8 @@ std::string usageText() {
   drape --render SCENE -o OUT.png [--view front|back|left|right|three-quarter|all] [--size WxH]
                                           [--mode shaded|wireframe|strain|domains|contacts] [--simulate none|preview|drape|full]
                                           render a PNG headless (no display server needed)
+  drape --render BODY.(obj|glb|gltf|fbx|ply|stl) -o OUT.png [--avatar-units U] [--view V] [--size WxH]
+                                          render a body mesh on its own (mannequin previews)
   drape --bench SCENE [--sweep KEY=V1,V2,...]... [-o REPORT.json] [--max-sim-time S]
                                           speed/accuracy trade: each sweep value against a tight reference drape
   drape --make-avatar MEASUREMENTS.(yaml|json) -o AVATAR.(obj|glb)

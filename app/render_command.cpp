@@ -2,9 +2,12 @@
 #include <unistd.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cctype>
 #include <ostream>
 
 #include "commands.h"
+#include "drape/avatar/avatar_loader.h"
 #include "drape/core/input_error.h"
 #include "drape/garment/garment_builder.h"
 #include "drape/render/headless.h"
@@ -50,9 +53,30 @@ void checkPngPath(const std::filesystem::path& output, const std::string& option
   if (output.extension() != ".png") throw InputError(output.string() + ": the output of " + option + " must be a .png file");
 }
 
+namespace {
+
+// Body meshes render on their own (mannequin previews); everything else is a scene or a pattern.
+bool isMeshFile(const std::filesystem::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".obj" || ext == ".glb" || ext == ".gltf" || ext == ".fbx" || ext == ".ply" || ext == ".stl";
+}
+
+}  // namespace
+
 int runRender(const CliOptions& options, std::ostream& out) {
   checkPngPath(options.output, "--render");
   checkWritableDirectory(options.output);
+  if (isMeshFile(options.scene.input)) {
+    if (!options.simulateStage.empty() && options.simulateStage != "none")
+      throw InputError(options.scene.input.string() + ": a body mesh has nothing to simulate (--simulate " +
+                       options.simulateStage + " needs a scene or a pattern)");
+    const std::string units = options.scene.avatarUnits.empty() ? "m" : options.scene.avatarUnits;
+    Snapshot body;
+    body.avatar = loadAvatar(options.scene.input, unitsInMeterFromName(units));
+    renderToPng(body, options, SceneCamera{}, options.output, out);
+    return 0;
+  }
   Scene scene = loadScene(requestWithStage(options));
   const SceneCamera camera = sceneCamera(scene.settings);
   const Snapshot snapshot = stageSnapshot(std::move(scene), out);

@@ -107,6 +107,32 @@ TEST(CliRender, ViewAllWritesAContactSheet) {
   EXPECT_EQ(image.height, 2 * 64);
 }
 
+TEST(CliRender, BodyMeshRendersOnItsOwn) {
+  const auto png = kScratch / "body.png";
+  std::filesystem::remove(png);
+  auto r = drape("--render " + asset("avatars/female.obj") + " -o " + quote(png.string()) + " --size 90x160 --view front");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const render::Image image = render::readPng(png);
+  ASSERT_EQ(image.width, 90);
+  // The background is a vertical gradient (constant along a row but for the floor grid). The body stands in the
+  // middle: on the centre column many rows differ clearly from the same row's left-border pixel; on a column
+  // near the border few do.
+  auto bodyRows = [&](int x) {
+    int n = 0;
+    for (int y = 0; y < image.height; ++y) {
+      const uint8_t* p = &image.pixels[4 * (y * image.width + x)];
+      const uint8_t* edge = &image.pixels[4 * (y * image.width + 1)];
+      if (std::abs(p[0] - edge[0]) + std::abs(p[1] - edge[1]) + std::abs(p[2] - edge[2]) > 30) ++n;
+    }
+    return n;
+  };
+  EXPECT_GT(bodyRows(45), 60) << "centre column";
+  EXPECT_LT(bodyRows(4), 10) << "near the border";
+  auto simulate = drape("--render " + asset("avatars/female.obj") + " -o " + quote(png.string()) + " --simulate drape");
+  EXPECT_EQ(simulate.exitCode, 1);
+  EXPECT_NE(simulate.err.find("a body mesh has nothing to simulate"), std::string::npos) << simulate.err;
+}
+
 TEST(CliRender, ErrorsAreOneLine) {
   auto notPng = drape("--render " + asset("scenes/tablecloth.json") + " -o " + quote((kScratch / "x.jpg").string()));
   EXPECT_EQ(notPng.exitCode, 1);

@@ -64,8 +64,10 @@ Image OffscreenRenderer::contactSheet(const Snapshot& snapshot, const RenderOpti
     drawText(sheet, x, y, std::string("MODE: ") + std::string(displayModeName(options.mode)), scale, ink);
     if (!snapshot.stage.empty())
       drawText(sheet, x, y + 12 * scale, "STAGE: " + snapshot.stage, scale, ink);
-    drawText(sheet, x, y + 24 * scale,
-             std::to_string(snapshot.triangles.rows()) + " TRIANGLES", scale, ink);
+    const std::string count = snapshot.triangles.rows() > 0
+                                  ? std::to_string(snapshot.triangles.rows()) + " TRIANGLES"
+                                  : std::to_string(snapshot.avatar.triangleCount()) + " BODY TRIANGLES";
+    drawText(sheet, x, y + 24 * scale, count, scale, ink);
   }
   // Thin separators between the tiles.
   for (int c = 1; c < kColumns; ++c)
