@@ -89,14 +89,6 @@ TEST_F(MainWindowTest, DrapeActionRunsOnTheWorkerAndTheViewportFollows) {
   EXPECT_TRUE(dialogs.errors.empty());
 }
 
-TEST_F(MainWindowTest, PreviewIsVisiblyUnavailable) {
-  QAction* preview = window->simulationActions().preview;
-  EXPECT_FALSE(preview->isEnabled());
-  EXPECT_NE(preview->toolTip().indexOf("not available"), -1);
-  drapeSteps(1);
-  EXPECT_FALSE(preview->isEnabled());
-}
-
 TEST_F(MainWindowTest, MalformedFileShowsTheLoaderMessageAndKeepsTheScene) {
   drapeSteps(3);
   const auto before = window->currentSnapshot();

@@ -108,10 +108,26 @@ TEST_F(SimulationControllerTest, CancelMidStepThenResetReturnsToThePlacedGarment
   QTest::qWait(300);
   EXPECT_LE(rec.reports.size(), reportsAtCancel + 1) << "at most the interrupted step reports after cancel";
   EXPECT_LT(timer.elapsed(), 10000);
-  // Drape does nothing after a cancel until reset.
+  // After a cancel, start (Resume) continues from the kept state: the engine's cancel flag is cleared.
+  const double cancelledAt = rec.reports.back().time;
+  const size_t reportsBeforeResume = rec.reports.size();
   controller.start();
+  ASSERT_TRUE(waitUntil([&] { return rec.reports.size() >= reportsBeforeResume + 2; }));
+  controller.pause();
+  ASSERT_TRUE(waitUntil([&] { return controller.runState() == qt::RunState::Paused; }));
+  for (size_t i = reportsBeforeResume; i < rec.reports.size(); ++i) {
+    EXPECT_NE(rec.reports[i].status, StepStatus::Cancelled);
+    EXPECT_GT(rec.reports[i].time, cancelledAt) << "continues, does not start over";
+  }
+  // A start issued before a cancel that lands first does nothing (the cancel wins).
+  controller.cancel();
+  ASSERT_TRUE(waitUntil([&] { return controller.runState() == qt::RunState::Cancelled; }));
+  const size_t afterSecondCancel = rec.reports.size();
+  QMetaObject::invokeMethod(controller.worker(), [&] { controller.worker()->start(controller.worker()->cancelGeneration() - 1); },
+                            Qt::BlockingQueuedConnection);
   QTest::qWait(200);
   EXPECT_EQ(controller.runState(), qt::RunState::Cancelled);
+  EXPECT_EQ(rec.reports.size(), afterSecondCancel);
 
   const size_t snapshotsBefore = rec.snapshots.size();
   controller.reset();
@@ -122,7 +138,7 @@ TEST_F(SimulationControllerTest, CancelMidStepThenResetReturnsToThePlacedGarment
   EXPECT_EQ(reset->stage, "placed");
   EXPECT_LT(maxDisplacement(*reset, *placed), 1e-12);
   controller.start();
-  ASSERT_TRUE(waitUntil([&] { return rec.reports.size() >= reportsAtCancel + 3; }));
+  ASSERT_TRUE(waitUntil([&] { return rec.reports.size() >= afterSecondCancel + 3; }));
   EXPECT_TRUE(rec.errors.empty());
 }
 
@@ -137,6 +153,34 @@ TEST_F(SimulationControllerTest, DestroyingTheControllerDuringAStepJoinsPromptly
   timer.start();
   controller.reset();  // cancels the step in progress and joins the thread
   EXPECT_LT(timer.elapsed(), 10000);
+}
+
+TEST_F(SimulationControllerTest, DragCommandsReachTheWorkersSimulation) {
+  qt::SimulationController controller;
+  Recorder rec;
+  rec.attach(controller);
+  auto simulation = makeSimulation();
+  const int vertex = simulation->garment().vertexCount() / 2;
+  const Eigen::Vector3d target = simulation->garment().positions.row(vertex).transpose() + Eigen::Vector3d(0, 0.3, 0);
+  auto observed = simulation;  // read on the worker thread only
+  auto draggedOnWorker = [&] {
+    int dragged = -2;
+    QMetaObject::invokeMethod(
+        controller.worker(), [&] { dragged = observed->draggedVertex(); }, Qt::BlockingQueuedConnection);
+    return dragged;  // queued after the commands sent before, so it sees their effect
+  };
+  controller.setSimulation(simulation);
+  simulation.reset();
+  ASSERT_TRUE(waitUntil([&] { return controller.runState() == qt::RunState::Ready; }));
+  controller.setDrag(vertex, target);
+  EXPECT_EQ(draggedOnWorker(), vertex);
+  controller.start();
+  ASSERT_TRUE(waitUntil([&] { return rec.reports.size() >= 3; }));
+  EXPECT_EQ(draggedOnWorker(), vertex) << "the drag survives the steps";
+  controller.setDrag(-1, {});
+  EXPECT_EQ(draggedOnWorker(), -1);
+  controller.pause();
+  ASSERT_TRUE(waitUntil([&] { return controller.runState() == qt::RunState::Paused; }));
 }
 
 TEST_F(SimulationControllerTest, ANewSimulationReplacesARunningOne) {

@@ -86,15 +86,20 @@ void MainWindow::createActions() {
   m_redo = m_document->undoStack()->createRedoAction(this, tr("&Redo"));
   m_redo->setShortcut(QKeySequence::Redo);
 
-  m_sim.preview = new QAction(tr("Preview"), this);
-  m_sim.preview->setEnabled(false);
+  m_sim.preview = new QAction(s->standardIcon(QStyle::SP_MediaSeekForward), tr("Pre&view"), this);
+  m_sim.preview->setShortcut(QKeySequence(Qt::SHIFT | Qt::Key_F5));
   m_sim.preview->setToolTip(
-      tr("The fast preview solver (domain-decomposed Projective Dynamics) is not available yet; use Drape."));
+      tr("Run the fast preview (domain-decomposed Projective Dynamics) from the placed garment; drag vertices "
+         "with the mouse and Ctrl+click to pin while it runs (Shift+F5)"));
   m_sim.preview->setStatusTip(m_sim.preview->toolTip());
+  connect(m_sim.preview, &QAction::triggered, m_controller, &SimulationController::preview);
   m_sim.drape = new QAction(s->standardIcon(QStyle::SP_MediaPlay), tr("&Drape"), this);
   m_sim.drape->setShortcut(QKeySequence(Qt::Key_F5));
-  m_sim.drape->setToolTip(tr("Run the accurate drape (Backward-Euler Newton) until the garment rests (F5)"));
-  connect(m_sim.drape, &QAction::triggered, m_controller, &SimulationController::start);
+  m_sim.drape->setToolTip(
+      tr("Run the accurate drape (Backward-Euler Newton) until the garment rests, starting from the preview "
+         "state when a preview has run (F5)"));
+  m_sim.drape->setStatusTip(m_sim.drape->toolTip());
+  connect(m_sim.drape, &QAction::triggered, m_controller, &SimulationController::drape);
   m_sim.pause = new QAction(s->standardIcon(QStyle::SP_MediaPause), tr("&Pause"), this);
   m_sim.pause->setShortcut(QKeySequence(Qt::Key_F6));
   connect(m_sim.pause, &QAction::triggered, m_controller, &SimulationController::pause);
@@ -107,7 +112,7 @@ void MainWindow::createActions() {
   connect(m_sim.reset, &QAction::triggered, m_controller, &SimulationController::reset);
   m_sim.cancel = new QAction(s->standardIcon(QStyle::SP_MediaStop), tr("&Cancel"), this);
   m_sim.cancel->setShortcut(QKeySequence(Qt::Key_Escape));
-  m_sim.cancel->setToolTip(tr("Interrupt the current step and stop; Reset starts again (Esc)"));
+  m_sim.cancel->setToolTip(tr("Interrupt the current step and stop; Resume or Drape continue, Reset starts again (Esc)"));
   connect(m_sim.cancel, &QAction::triggered, m_controller, &SimulationController::cancel);
 
   m_frameAll = new QAction(tr("&Frame All"), this);
@@ -243,11 +248,29 @@ void MainWindow::connectDocument() {
                         .arg(simulation->garment().triangleCount())
                         .arg(simulation->pinned().size())
                         .arg(terms.join(", ")));
-    m_controller->setSimulation(std::move(simulation));
-    m_statisticsPanel->clear();
+    if (simulation->resumed()) {
+      // An edit of the running scene (fabric, pin, setting): continue from the current state.
+      log(tr("info"), tr("The %1 continues from %2 (t = %3 s)")
+                          .arg(QString::fromStdString(simulation->stage()))
+                          .arg(simulation->stage() == "drape" ? tr("the last preview state") : tr("its current state"))
+                          .arg(simulation->time(), 0, 'f', 3));
+      m_controller->continueWith(std::move(simulation));
+    } else {
+      m_controller->setSimulation(std::move(simulation));
+      m_statisticsPanel->clear();
+    }
     refreshPanels();
     updateTitle();
   });
+  m_document->setResumeSource([this] {
+    return m_controller ? m_controller->latestResumeState() : std::optional<ResumeState>();
+  });
+  m_viewport->setGarmentInteraction(true);
+  connect(m_viewport, &ViewportWidget::dragChanged, this, [this](int vertex, const Eigen::Vector3d& target) {
+    m_controller->setDrag(vertex, target);
+  });
+  connect(m_viewport, &ViewportWidget::pinToggleRequested, this, [this](int vertex) { m_document->togglePin(vertex); });
+  connect(m_controller, &SimulationController::stageChanged, this, [this] { updateActions(); });
   connect(m_document, &SceneDocument::errorOccurred, this,
           [this](const QString& message) { showError(tr("Cannot use this input"), message); });
   connect(m_document, &SceneDocument::warningsReported, this, [this](const QStringList& warnings) {
@@ -268,8 +291,9 @@ void MainWindow::connectDocument() {
   connect(m_controller, &SimulationController::runStateChanged, this, [this](RunState state) {
     m_runState = state;
     if (state == RunState::Ready) m_statisticsPanel->clear();
-    if (state == RunState::Finished) log(tr("info"), tr("Drape finished"));
-    if (state == RunState::Cancelled) log(tr("info"), tr("Drape cancelled; Reset to start again"));
+    const QString what = m_controller->stage() == "preview" ? tr("Preview") : tr("Drape");
+    if (state == RunState::Finished) log(tr("info"), tr("%1 finished").arg(what));
+    if (state == RunState::Cancelled) log(tr("info"), tr("%1 cancelled; Resume continues, Reset starts again").arg(what));
     updateActions();
   });
   connect(m_controller, &SimulationController::errorOccurred, this,
@@ -279,10 +303,14 @@ void MainWindow::connectDocument() {
 void MainWindow::updateActions() {
   const bool scene = m_document->hasScene();
   const RunState s = m_runState;
-  m_sim.preview->setEnabled(false);  // not available yet: see its tooltip
-  m_sim.drape->setEnabled(s == RunState::Ready);
+  const QString stage = m_controller ? m_controller->stage() : QString();
+  const bool idle = s != RunState::Empty && s != RunState::Running;
+  // Preview: from the placed garment, or continuing a preview; Drape: from the placed garment, from the preview
+  // state, or continuing a drape that has not finished.
+  m_sim.preview->setEnabled(idle && (stage == "placed" || (stage == "preview" && s != RunState::Finished)));
+  m_sim.drape->setEnabled(idle && !(stage == "drape" && s == RunState::Finished));
   m_sim.pause->setEnabled(s == RunState::Running);
-  m_sim.resume->setEnabled(s == RunState::Paused);
+  m_sim.resume->setEnabled(s == RunState::Paused || s == RunState::Cancelled);
   m_sim.cancel->setEnabled(s == RunState::Running);
   m_sim.reset->setEnabled(s != RunState::Empty && s != RunState::Ready);
   m_save->setEnabled(scene);

@@ -2,10 +2,12 @@
 
 #include <QFileInfo>
 #include <QUndoCommand>
+#include <algorithm>
 #include <exception>
 
 #include "drape/core/input_error.h"
 #include "drape/io/atomic_file.h"
+#include "drape/scene/pins.h"
 
 namespace drape::qt {
 
@@ -32,6 +34,15 @@ Scene buildScene(const SceneState& state) {
       scene.panelFabrics[panel] = loadFabricPreset(preset);
     } catch (const InputError& e) {
       throw InputError(where + ": " + e.what());
+    }
+  }
+  if (state.vertexPins) {
+    std::erase_if(scene.pins, [](const PinSpec& pin) { return !pin.vertices.empty(); });
+    if (!state.vertexPins->empty()) {
+      PinSpec pin;
+      pin.vertices = *state.vertexPins;
+      pin.where = state.input.string() + ": pins set in the GUI";
+      scene.pins.push_back(std::move(pin));
     }
   }
   return scene;
@@ -73,8 +84,68 @@ SceneDocument::Built SceneDocument::build(const SceneState& state) const {
   Built built;
   built.scene = std::make_shared<Scene>(buildScene(state));
   // The Simulation validates what the loaders cannot (pins that hold no vertex, meshing failures).
-  built.simulation = std::make_shared<Simulation>(*built.scene);
+  std::optional<ResumeState> resume;
+  if (m_resumeSource && keepsMesh(state)) resume = m_resumeSource();
+  if (resume) {
+    // The simulation continues in the stage it was in; the document's scene (what Save writes) keeps its own.
+    Scene running = *built.scene;
+    running.settings.set("solver.stage", resume->stage, "simulation");
+    built.simulation = std::make_shared<Simulation>(std::move(running), *resume);
+  } else {
+    built.simulation = std::make_shared<Simulation>(*built.scene);
+  }
   return built;
+}
+
+bool SceneDocument::keepsMesh(const SceneState& state) const {
+  if (!m_scene || state.input != m_state.input || state.avatarFile != m_state.avatarFile ||
+      state.avatarUnits != m_state.avatarUnits)
+    return false;
+  auto meshOverrides = [](const SceneState& s) {
+    std::map<std::string, std::string> m;
+    for (const auto& [key, value] : s.overrides)
+      if (key.rfind("mesh.", 0) == 0 || key.rfind("avatar.", 0) == 0) m[key] = value;
+    return m;
+  };
+  return meshOverrides(state) == meshOverrides(m_state);
+}
+
+std::vector<int> SceneDocument::vertexPins() const {
+  std::vector<int> vertices;
+  if (!m_scene) return vertices;
+  for (const PinSpec& pin : m_scene->pins) vertices.insert(vertices.end(), pin.vertices.begin(), pin.vertices.end());
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  return vertices;
+}
+
+bool SceneDocument::togglePin(int vertex) {
+  if (!m_scene || !m_garment || vertex < 0 || vertex >= m_garment->vertexCount()) return false;
+  std::vector<int> vertices = vertexPins();
+  const auto it = std::lower_bound(vertices.begin(), vertices.end(), vertex);
+  const bool pinned = it != vertices.end() && *it == vertex;
+  if (!pinned) {
+    // Held by an edge or region pin of the file? Then there is nothing to toggle here.
+    for (const PinSpec& pin : m_scene->pins) {
+      if (!pin.vertices.empty()) continue;
+      try {
+        const std::vector<int> held = pinVertices(pin, *m_scene, *m_garment);
+        if (std::find(held.begin(), held.end(), vertex) != held.end()) {
+          emit warningsReported({tr("vertex %1 is held by %2; edit that pin in the scene file")
+                                     .arg(vertex)
+                                     .arg(QString::fromStdString(pin.where))});
+          return false;
+        }
+      } catch (const std::exception&) {
+      }
+    }
+    vertices.insert(it, vertex);
+  } else {
+    vertices.erase(it);
+  }
+  SceneState next = m_state;
+  next.vertexPins = vertices;
+  return change(next, pinned ? tr("Unpin vertex %1").arg(vertex) : tr("Pin vertex %1").arg(vertex));
 }
 
 void SceneDocument::install(const SceneState& state, Built built) {

@@ -72,6 +72,22 @@ std::string sceneFileText(const Scene& scene, const SceneState& state, const std
   }
   if (!scene.avatarFile.empty()) setDotted(root, {"avatar", "file"}, 0, relativePath(scene.avatarFile, target));
 
+  if (state.vertexPins) {
+    // The GUI's vertex pins replace the file's vertex pins; edge and region pins stay as written.
+    QJsonArray pins;
+    for (const QJsonValue& pin : root["pins"].toArray())
+      if (!pin.toObject().contains("vertices")) pins.append(pin);
+    if (!state.vertexPins->empty()) {
+      QJsonArray vertices;
+      for (int v : *state.vertexPins) vertices.append(v);
+      pins.append(QJsonObject{{"vertices", vertices}});
+    }
+    if (pins.isEmpty())
+      root.remove("pins");
+    else
+      root["pins"] = pins;
+  }
+
   QJsonObject panelFabrics = root["panel_fabrics"].toObject();
   for (const auto& [panel, preset] : state.panelPresets) {
     if (preset.empty())

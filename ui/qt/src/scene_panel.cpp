@@ -22,6 +22,12 @@ QString describePin(const PinSpec& pin) {
         .arg(pin.region.max.y(), 0, 'g', 3)
         .arg(pin.region.max.z(), 0, 'g', 3);
   }
+  if (!pin.vertices.empty()) {
+    QStringList indices;
+    for (size_t i = 0; i < pin.vertices.size() && i < 12; ++i) indices << QString::number(pin.vertices[i]);
+    if (pin.vertices.size() > 12) indices << QStringLiteral("...");
+    return QObject::tr("%n vertex(es): %1", nullptr, static_cast<int>(pin.vertices.size())).arg(indices.join(", "));
+  }
   const QString edge = pin.edgeLabel.empty() ? QString::number(pin.edge) : QString::fromStdString(pin.edgeLabel);
   return QObject::tr("panel %1, edge %2").arg(QString::fromStdString(pin.panel), edge);
 }

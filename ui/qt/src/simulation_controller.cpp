@@ -27,6 +27,13 @@ SimulationController::SimulationController(QObject* parent) : QObject(parent) {
         emit runStateChanged(state);
       },
       Qt::QueuedConnection);
+  connect(
+      m_worker, &SimulationWorker::stageChanged, this,
+      [this](QString stage) {
+        m_stage = stage;
+        emit stageChanged(stage);
+      },
+      Qt::QueuedConnection);
   connect(m_worker, &SimulationWorker::errorOccurred, this, &SimulationController::errorOccurred, Qt::QueuedConnection);
   m_thread.start();
 }
@@ -46,8 +53,33 @@ void SimulationController::setSimulation(std::shared_ptr<Simulation> simulation)
                             Q_ARG(std::shared_ptr<drape::Simulation>, std::move(simulation)));
 }
 
+void SimulationController::continueWith(std::shared_ptr<Simulation> simulation) {
+  QMetaObject::invokeMethod(
+      m_worker, [worker = m_worker, simulation = std::move(simulation)] { worker->continueWith(simulation); },
+      Qt::QueuedConnection);
+}
+
+// Run commands carry the cancel generation seen now: a cancel issued after them wins.
 void SimulationController::start() {
-  QMetaObject::invokeMethod(m_worker, &SimulationWorker::start, Qt::QueuedConnection);
+  QMetaObject::invokeMethod(
+      m_worker, [worker = m_worker, g = m_worker->cancelGeneration()] { worker->start(g); }, Qt::QueuedConnection);
+}
+
+void SimulationController::preview() {
+  QMetaObject::invokeMethod(
+      m_worker, [worker = m_worker, g = m_worker->cancelGeneration()] { worker->startPreview(g); },
+      Qt::QueuedConnection);
+}
+
+void SimulationController::drape() {
+  QMetaObject::invokeMethod(
+      m_worker, [worker = m_worker, g = m_worker->cancelGeneration()] { worker->startDrape(g); },
+      Qt::QueuedConnection);
+}
+
+void SimulationController::setDrag(int vertex, const Eigen::Vector3d& target) {
+  QMetaObject::invokeMethod(
+      m_worker, [worker = m_worker, vertex, target] { worker->setDrag(vertex, target); }, Qt::QueuedConnection);
 }
 
 void SimulationController::pause() {

@@ -2,6 +2,7 @@
 
 #include <QMetaObject>
 #include <exception>
+#include <stdexcept>
 
 namespace drape::qt {
 
@@ -26,7 +27,18 @@ std::shared_ptr<Simulation> SimulationWorker::current() const {
   return m_simulation;
 }
 
+QString SimulationWorker::stage() const {
+  std::lock_guard<std::mutex> lock(m_mutex);
+  return m_stage;
+}
+
+std::optional<ResumeState> SimulationWorker::latestResumeState() const {
+  std::lock_guard<std::mutex> lock(m_mutex);
+  return m_resume;
+}
+
 void SimulationWorker::cancel() {
+  ++m_cancelGeneration;
   m_running.store(false);
   if (auto simulation = current()) {
     simulation->requestCancel();
@@ -39,6 +51,28 @@ void SimulationWorker::setState(RunState state) {
   if (m_state.exchange(state) != state) emit runStateChanged(state);
 }
 
+void SimulationWorker::updateStage() {
+  auto simulation = current();
+  QString stage;
+  if (simulation)
+    stage = simulation->steps() == 0 && !simulation->resumed() ? QStringLiteral("placed")
+                                                               : QString::fromStdString(simulation->stage());
+  {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    if (stage == m_stage) return;
+    m_stage = stage;
+  }
+  emit stageChanged(stage);
+}
+
+void SimulationWorker::publishResumeState() {
+  auto simulation = current();
+  std::optional<ResumeState> resume;
+  if (simulation && (simulation->steps() > 0 || simulation->resumed())) resume = simulation->resumeState();
+  std::lock_guard<std::mutex> lock(m_mutex);
+  m_resume = std::move(resume);
+}
+
 void SimulationWorker::sendSnapshot() {
   auto simulation = current();
   if (!simulation) return;
@@ -46,12 +80,26 @@ void SimulationWorker::sendSnapshot() {
   emit snapshotReady(std::make_shared<const Snapshot>(simulation->snapshot()));
 }
 
-void SimulationWorker::setSimulation(std::shared_ptr<Simulation> simulation) {
-  m_running.store(false);
+void SimulationWorker::replace(std::shared_ptr<Simulation> simulation) {
   {
     std::lock_guard<std::mutex> lock(m_mutex);
     m_simulation = std::move(simulation);
   }
+  auto fresh = current();
+  if (fresh && m_dragVertex >= 0) {
+    if (m_dragVertex < fresh->garment().vertexCount())
+      fresh->setDrag(m_dragVertex, m_dragTarget);
+    else
+      m_dragVertex = -1;
+  }
+  updateStage();
+  publishResumeState();
+}
+
+void SimulationWorker::setSimulation(std::shared_ptr<Simulation> simulation) {
+  m_running.store(false);
+  m_dragVertex = -1;  // another garment: the grabbed index means nothing there
+  replace(std::move(simulation));
   if (!current()) {
     setState(RunState::Empty);
     return;
@@ -61,9 +109,42 @@ void SimulationWorker::setSimulation(std::shared_ptr<Simulation> simulation) {
   sendSnapshot();
 }
 
-void SimulationWorker::start() {
+void SimulationWorker::continueWith(std::shared_ptr<Simulation> simulation) {
+  if (!simulation) return;
+  const bool running = m_running.load();
+  replace(std::move(simulation));
+  if (running) {
+    setState(RunState::Running);
+    scheduleStep();  // the pending step event, if any, now steps the new simulation
+  } else {
+    m_state.store(RunState::Empty);  // announce the new simulation even when the state name is the same
+    setState(current()->resumed() ? RunState::Paused : RunState::Ready);
+  }
+  sendSnapshot();
+}
+
+bool SimulationWorker::rebuild(const std::string& stage, const ResumeState* from) {
+  auto old = current();
+  if (!old) return false;
+  try {
+    Scene scene = old->scene();
+    scene.settings.set("solver.stage", stage, "simulation");
+    auto fresh = from ? std::make_shared<Simulation>(std::move(scene), *from)
+                      : std::make_shared<Simulation>(std::move(scene));
+    replace(std::move(fresh));
+    sendSnapshot();
+    return true;
+  } catch (const std::exception& e) {
+    emit errorOccurred(QStringLiteral("Cannot start the %1: %2")
+                           .arg(QString::fromStdString(stage), QString::fromStdString(e.what())));
+    return false;
+  }
+}
+
+void SimulationWorker::start(int generation) {
   auto simulation = current();
-  if (!simulation || m_state.load() == RunState::Cancelled || m_running.load()) return;
+  if (!simulation || m_running.load() || cancelledSince(generation)) return;
+  simulation->clearCancel();  // after a cancel the kept state continues
   if (simulation->finished()) {
     setState(RunState::Finished);
     return;
@@ -71,6 +152,40 @@ void SimulationWorker::start() {
   m_running.store(true);
   setState(RunState::Running);
   scheduleStep();
+}
+
+void SimulationWorker::startPreview(int generation) {
+  auto simulation = current();
+  if (!simulation || m_running.load() || cancelledSince(generation)) return;
+  const QString now = stage();
+  if (now == "drape") return;  // the drape has started: Reset goes back to the placed garment
+  if (simulation->scene().settings.text("solver.stage") != "preview") {
+    if (now == "placed") {
+      if (!rebuild("preview", nullptr)) return;
+    } else {  // a "full" scene still in its preview: continue it as a preview only
+      const ResumeState from = simulation->resumeState();
+      if (!rebuild("preview", &from)) return;
+    }
+  }
+  start(generation);
+}
+
+void SimulationWorker::startDrape(int generation) {
+  auto simulation = current();
+  if (!simulation || m_running.load() || cancelledSince(generation)) return;
+  if (simulation->stage() == "preview") {
+    if (stage() == "placed") {
+      if (!rebuild("drape", nullptr)) return;
+    } else {
+      // The drape starts from the preview state (the engine resets the velocities).
+      ResumeState from = simulation->resumeState();
+      from.stage = "drape";
+      from.previewPositions = from.positions;
+      from.previewTime = from.time;
+      if (!rebuild("drape", &from)) return;
+    }
+  }
+  start(generation);
 }
 
 void SimulationWorker::scheduleStep() {
@@ -91,19 +206,39 @@ void SimulationWorker::reset() {
   if (!old) return;
   try {
     auto fresh = std::make_shared<Simulation>(old->scene());
+    const int drag = m_dragVertex;
     setSimulation(std::move(fresh));
+    m_dragVertex = drag;  // same garment: a vertex still held by the mouse stays held
   } catch (const std::exception& e) {
     emit errorOccurred(QStringLiteral("Reset failed: %1").arg(QString::fromStdString(e.what())));
   }
 }
 
+void SimulationWorker::setDrag(int vertex, Eigen::Vector3d target) {
+  m_dragVertex = vertex < 0 ? -1 : vertex;
+  m_dragTarget = target;
+  auto simulation = current();
+  if (!simulation) return;
+  try {
+    simulation->setDrag(m_dragVertex, target);
+  } catch (const std::invalid_argument&) {
+    m_dragVertex = -1;  // a stale index from another garment: ignore it
+  }
+}
+
 void SimulationWorker::stepOnce() {
   m_stepQueued = false;
-  if (!m_running.load()) return;
+  if (!m_running.load()) {
+    // Cancelled between two steps (cancel() runs on the UI thread and cannot send): show where it stopped.
+    if (m_state.load() == RunState::Cancelled) sendSnapshot();
+    return;
+  }
   auto simulation = current();
   if (!simulation) return;
   const StepReport report = simulation->step();
   emit stepReported(report);
+  updateStage();
+  if (report.status != StepStatus::Cancelled) publishResumeState();
   if (report.status == StepStatus::Cancelled) {
     m_running.store(false);
     setState(RunState::Cancelled);
@@ -125,7 +260,10 @@ void SimulationWorker::stepOnce() {
     sendSnapshot();
     return;
   }
-  if (!m_running.load()) return;  // paused or cancelled while stepping: that slot sent the snapshot
+  if (!m_running.load()) {  // paused (that slot sent the snapshot) or cancelled while stepping
+    if (m_state.load() == RunState::Cancelled) sendSnapshot();
+    return;
+  }
   const auto since = std::chrono::steady_clock::now() - m_lastSnapshot;
   if (since >= std::chrono::milliseconds(m_snapshotIntervalMs.load())) sendSnapshot();
   scheduleStep();

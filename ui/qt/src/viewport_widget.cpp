@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include "drape/qt/viewport_picking.h"
 #include "drape/render/renderer.h"
 
 namespace drape::qt {
@@ -133,14 +134,51 @@ void ViewportWidget::pan(double dx, double dy) {
   m_camera.target += shift;
 }
 
+int ViewportWidget::garmentVertexAt(const QPointF& position) const {
+  if (m_snapshot.positions.rows() == 0 || m_snapshot.triangles.rows() == 0) return -1;
+  const Ray ray = rayThroughPixel(m_camera, position.x(), position.y(), width(), height());
+  const auto hit = pickTriangle(ray, m_snapshot.positions, m_snapshot.triangles);
+  return hit ? hit->vertex : -1;
+}
+
+std::optional<QPointF> ViewportWidget::widgetPosition(const Eigen::Vector3d& point) const {
+  const auto p = projectToPixel(m_camera, point, width(), height());
+  if (!p) return std::nullopt;
+  return QPointF(p->x(), p->y());
+}
+
 void ViewportWidget::mousePressEvent(QMouseEvent* event) {
   m_lastMouse = event->position().toPoint();
   m_dragButton = event->button();
+  if (!m_garmentInteraction || event->button() != Qt::LeftButton) return;
+  const QPointF at = event->position();
+  const Ray ray = rayThroughPixel(m_camera, at.x(), at.y(), width(), height());
+  const auto hit = pickTriangle(ray, m_snapshot.positions, m_snapshot.triangles);
+  if (!hit) return;  // empty space: orbit
+  if (event->modifiers() & Qt::ControlModifier) {
+    m_dragButton = Qt::NoButton;  // a click, not a drag
+    emit pinToggleRequested(hit->vertex);
+    return;
+  }
+  m_grabVertex = hit->vertex;
+  m_grabPosition = m_snapshot.positions.row(hit->vertex).transpose();
+  m_grabNormal = viewDirection(m_camera);
+  // The cursor's point on the plane through the grabbed vertex: later moves shift the target by the cursor's
+  // displacement on that plane, so the garment does not jump on the press.
+  m_grabHit = intersectPlane(ray, m_grabPosition, m_grabNormal).value_or(m_grabPosition);
+  emit dragChanged(m_grabVertex, m_grabPosition);
 }
 
 void ViewportWidget::mouseMoveEvent(QMouseEvent* event) {
   if (m_dragButton == Qt::NoButton) return;
   const QPoint p = event->position().toPoint();
+  if (m_grabVertex >= 0) {
+    const Ray ray = rayThroughPixel(m_camera, event->position().x(), event->position().y(), width(), height());
+    if (const auto onPlane = intersectPlane(ray, m_grabPosition, m_grabNormal))
+      emit dragChanged(m_grabVertex, m_grabPosition + (*onPlane - m_grabHit));
+    m_lastMouse = p;
+    return;
+  }
   const QPoint d = p - m_lastMouse;
   m_lastMouse = p;
   if (m_dragButton == Qt::LeftButton)
@@ -152,7 +190,13 @@ void ViewportWidget::mouseMoveEvent(QMouseEvent* event) {
   update();
 }
 
-void ViewportWidget::mouseReleaseEvent(QMouseEvent*) { m_dragButton = Qt::NoButton; }
+void ViewportWidget::mouseReleaseEvent(QMouseEvent*) {
+  m_dragButton = Qt::NoButton;
+  if (m_grabVertex >= 0) {
+    m_grabVertex = -1;
+    emit dragChanged(-1, Eigen::Vector3d::Zero());
+  }
+}
 
 void ViewportWidget::mouseDoubleClickEvent(QMouseEvent*) { frameAll(); }
 

@@ -8,7 +8,9 @@
 #include <QUndoStack>
 #include <filesystem>
 #include <map>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,16 +27,20 @@ struct SceneState {
   std::string avatarUnits;                          // m, cm or mm; empty: the scene's
   std::map<std::string, std::string> overrides;     // setting key -> value, applied after the file
   std::map<std::string, std::string> panelPresets;  // panel name -> fabric preset, over the file's
+  // Garment vertices pinned in the GUI (sorted, unique). When set, they replace the vertex pins of the file
+  // ("pins": [{"vertices": [...]}]) by one vertex pin (none when empty); unset: the file's pins as they are.
+  std::optional<std::vector<int>> vertexPins;
 
   bool operator==(const SceneState&) const = default;
   SceneRequest request() const;
 };
 
-// Loads the state's scene (loadScene plus panel presets); throws InputError.
+// Loads the state's scene (loadScene plus panel presets and GUI vertex pins); throws InputError.
 Scene buildScene(const SceneState& state);
 
 // The scene file that reproduces scene and state: the original file's structure (name, pins, colliders) with
-// every setting that differs from its default, and paths relative to target's folder. Returns JSON text.
+// every setting that differs from its default, the GUI vertex pins, and paths relative to target's folder.
+// Returns JSON text.
 std::string sceneFileText(const Scene& scene, const SceneState& state, const std::filesystem::path& target);
 
 class SceneDocument : public QObject {
@@ -55,6 +61,16 @@ class SceneDocument : public QObject {
   bool setSettings(const std::map<std::string, std::string>& values, const QString& text);
   bool setFabricPreset(const std::string& preset);  // default fabric; drops fabric.* parameter overrides
   bool setPanelFabric(const std::string& panel, const std::string& preset);  // empty preset: the default
+  // Pins garment vertex when no vertex pin holds it, else unpins it (one undoable command). A vertex held by
+  // an edge or region pin of the file cannot be unpinned here: warningsReported says so, returns false.
+  bool togglePin(int vertex);
+  // Vertices the scene's vertex pins hold (sorted, unique).
+  std::vector<int> vertexPins() const;
+
+  // Where the running simulation is (the controller's latestResumeState). When set, the simulation of an edit
+  // that keeps the garment mesh (same files and mesh settings) continues from it: a preview from its current
+  // state, a drape from its last preview state. Undo and redo continue the same way.
+  void setResumeSource(std::function<std::optional<ResumeState>()> source) { m_resumeSource = std::move(source); }
 
   // Writes the scene file atomically (drape::writeFileAtomically) and marks the document clean; throws
   // InputError when it cannot be written.
@@ -89,8 +105,9 @@ class SceneDocument : public QObject {
     std::shared_ptr<Scene> scene;
     std::shared_ptr<Simulation> simulation;
   };
-  // Throws InputError.
+  // Throws InputError. Continues from the resume source when state keeps the current garment mesh.
   Built build(const SceneState& state) const;
+  bool keepsMesh(const SceneState& state) const;
   // Makes state current with its prebuilt scene and announces it.
   void install(const SceneState& state, Built built);
   // Rebuilds state (undo/redo); reports an error and keeps the current scene on failure.
@@ -101,6 +118,7 @@ class SceneDocument : public QObject {
   std::shared_ptr<const Garment> m_garment;
   std::filesystem::path m_savePath;
   std::vector<std::pair<std::string, std::string>> m_baseOverrides;
+  std::function<std::optional<ResumeState>()> m_resumeSource;
   QUndoStack m_undo;
 };
 
