@@ -149,6 +149,15 @@ TEST(Resume, EditedDrapeRestartsFromTheLastPreviewState) {
   EXPECT_LT((edited.positions() - previewEnd).cwiseAbs().maxCoeff(), 1e-12);
 }
 
+TEST(Resume, DrapeWithoutPreviewStartsFromThePlacedGarment) {
+  Simulation first(tablecloth("drape"));
+  for (int i = 0; i < 3; ++i) first.step();
+  Simulation edited(tablecloth("drape", "denim"), first.resumeState());
+  EXPECT_FALSE(edited.resumed());
+  EXPECT_DOUBLE_EQ(edited.time(), 0.0);
+  EXPECT_EQ(edited.snapshot().stage, "placed");
+}
+
 TEST(Resume, RemeshedSceneStartsOver) {
   Simulation first(tablecloth("preview"));
   for (int i = 0; i < 3; ++i) first.step();
