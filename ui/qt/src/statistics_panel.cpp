@@ -40,6 +40,9 @@ double niceUpper(double v) {
 }  // namespace
 
 StatisticsPanel::StatisticsPanel(QWidget* parent) : QWidget(parent) {
+  m_refresh.setSingleShot(true);
+  m_refresh.setInterval(kRefreshMs);
+  connect(&m_refresh, &QTimer::timeout, this, &StatisticsPanel::flush);
   auto* layout = new QVBoxLayout(this);
   auto* grid = new QGridLayout;
   const QStringList names = {tr("stage"),    tr("time"),           tr("step time"), tr("iterations"),
@@ -111,6 +114,8 @@ void StatisticsPanel::setStage(const QString& stage) {
 }
 
 void StatisticsPanel::clear() {
+  m_pending.clear();
+  m_refresh.stop();
   m_kinetic->clear();
   m_residual->clear();
   m_steps = 0;
@@ -123,8 +128,31 @@ void StatisticsPanel::clear() {
 }
 
 void StatisticsPanel::addReport(const StepReport& report) {
-  ++m_steps;
-  m_totalWall += report.wallTime;
+  m_pending.push_back(report);
+  if (!m_refresh.isActive()) m_refresh.start();
+}
+
+void StatisticsPanel::flush() {
+  if (m_pending.empty()) return;
+  const std::vector<StepReport> reports = std::move(m_pending);
+  m_pending.clear();
+  QList<QPointF> kinetic, residual;
+  for (const StepReport& r : reports) {
+    ++m_steps;
+    m_totalWall += r.wallTime;
+    // Log axes: zero values (velocities zeroed during the initial relaxation) are left out of the plot.
+    if (std::isfinite(r.kineticEnergy) && r.kineticEnergy > kFloor) {
+      kinetic.append(QPointF(r.time, r.kineticEnergy));
+      m_minKinetic = std::min(m_minKinetic, r.kineticEnergy);
+      m_maxKinetic = std::max(m_maxKinetic, r.kineticEnergy);
+    }
+    if (std::isfinite(r.residual) && r.residual > kFloor) {
+      residual.append(QPointF(r.time, r.residual));
+      m_minResidual = std::min(m_minResidual, r.residual);
+      m_maxResidual = std::max(m_maxResidual, r.residual);
+    }
+  }
+  const StepReport& report = reports.back();
   setFigure(tr("stage"), QString::fromStdString(report.stage) + (report.atRest ? tr(" (at rest)") : QString()));
   setFigure(tr("time"), tr("%1 s (step %2)").arg(report.time, 0, 'f', 4).arg(m_steps));
   setFigure(tr("step time"),
@@ -134,21 +162,15 @@ void StatisticsPanel::addReport(const StepReport& report) {
   setFigure(tr("kinetic energy"), QStringLiteral("%1 J").arg(report.kineticEnergy, 0, 'e', 2));
   setFigure(tr("contacts"), QString::number(report.contacts));
   setFigure(tr("max strain"), QStringLiteral("%1 %").arg(report.maxStrain * 100.0, 0, 'f', 2));
-
-  // Log axes: zero values (velocities zeroed during the initial relaxation) are left out of the plot.
-  if (std::isfinite(report.kineticEnergy) && report.kineticEnergy > kFloor) {
-    m_kinetic->append(report.time, report.kineticEnergy);
+  if (!kinetic.isEmpty()) {
+    m_kinetic->append(kinetic);
     thin(m_kinetic);
-    m_minKinetic = std::min(m_minKinetic, report.kineticEnergy);
-    m_maxKinetic = std::max(m_maxKinetic, report.kineticEnergy);
     m_kineticAxis->setRange(std::max(niceLower(m_minKinetic), niceUpper(m_maxKinetic) * kMaxDecades),
                             niceUpper(m_maxKinetic));
   }
-  if (std::isfinite(report.residual) && report.residual > kFloor) {
-    m_residual->append(report.time, report.residual);
+  if (!residual.isEmpty()) {
+    m_residual->append(residual);
     thin(m_residual);
-    m_minResidual = std::min(m_minResidual, report.residual);
-    m_maxResidual = std::max(m_maxResidual, report.residual);
     m_residualAxis->setRange(std::max(niceLower(m_minResidual), niceUpper(m_maxResidual) * kMaxDecades),
                              niceUpper(m_maxResidual));
   }

@@ -2,8 +2,10 @@
 // The Statistics dock: the latest step (stage, time, step time, iterations, residual, kinetic energy,
 // contacts, max strain) and a plot of kinetic energy and residual against simulated time (QtCharts, log axes).
 #include <QString>
+#include <QTimer>
 #include <QWidget>
 #include <map>
+#include <vector>
 
 #include "drape/sim/simulation.h"
 
@@ -21,18 +23,22 @@ class StatisticsPanel : public QWidget {
  public:
   explicit StatisticsPanel(QWidget* parent = nullptr);
 
+  // Queues a step's report; the figures and the plot refresh at most every kRefreshMs (a fast preview reports
+  // hundreds of steps per second, more than a chart can redraw), with every queued point plotted.
   void addReport(const StepReport& report);
+  static constexpr int kRefreshMs = 40;
   void setStage(const QString& stage);
   // Clears the plot and the figures (new scene, reset).
   void clear();
 
-  int steps() const { return m_steps; }
+  int steps() const { return m_steps; }  // reports shown so far (queued ones count after the next refresh)
   // Points in the residual series (the plot keeps at most ~2000 per series, thinning older ones).
   int plottedPoints() const;
   QString figure(const QString& name) const;  // the text of one figure ("iterations", "residual", ...)
 
  private:
   void setFigure(const QString& name, const QString& text);
+  void flush();  // shows the queued reports
 
   QChartView* m_view = nullptr;
   QLineSeries* m_kinetic = nullptr;
@@ -41,6 +47,8 @@ class StatisticsPanel : public QWidget {
   QLogValueAxis* m_kineticAxis = nullptr;
   QLogValueAxis* m_residualAxis = nullptr;
   std::map<QString, QLabel*> m_figures;
+  std::vector<StepReport> m_pending;
+  QTimer m_refresh;
   int m_steps = 0;
   double m_totalWall = 0.0;
   double m_minKinetic = 1e300, m_maxKinetic = 0, m_minResidual = 1e300, m_maxResidual = 0;
