@@ -17,6 +17,25 @@ AvatarContactEnergy::AvatarContactEnergy(std::shared_ptr<const AvatarCollider> c
                                          ContactParameters params)
     : m_collider(std::move(collider)), m_vertexCount(vertexCount), m_params(params) {}
 
+double AvatarContactEnergy::penalty(double distance) const {
+  const double k = m_params.stiffness;
+  const double t = m_params.thickness;
+  if (distance >= 0.0) return 0.5 * k * (t - distance) * (t - distance);
+  const double u = -distance;
+  return 0.5 * k * t * t + k * t * u + 0.5 * k * m_params.insideStiffnessFactor * u * u;
+}
+
+double AvatarContactEnergy::penaltyForce(double distance) const {
+  const double k = m_params.stiffness;
+  const double t = m_params.thickness;
+  if (distance >= 0.0) return k * (t - distance);
+  return k * t - k * m_params.insideStiffnessFactor * distance;
+}
+
+double AvatarContactEnergy::penaltyStiffness(double distance) const {
+  return distance >= 0.0 ? m_params.stiffness : m_params.stiffness * m_params.insideStiffnessFactor;
+}
+
 void AvatarContactEnergy::beginStep(const newton::StepContext& ctx) {
   std::lock_guard lock(m_mutex);
   m_startPositions = *ctx.previousPositions;
@@ -98,32 +117,26 @@ double AvatarContactEnergy::value(const Eigen::VectorXd& x) const {
   std::lock_guard lock(m_mutex);
   update(x);
   double e = 0.0;
-  for (const Active& a : m_active) {
-    const double gap = m_params.thickness - a.stencil.distance;
-    e += 0.5 * m_params.stiffness * gap * gap;
-  }
+  for (const Active& a : m_active) e += penalty(a.stencil.distance);
   return e;
 }
 
 void AvatarContactEnergy::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
   std::lock_guard lock(m_mutex);
   update(x);
-  for (const Active& a : m_active) {
-    const double gap = m_params.thickness - a.stencil.distance;
-    g.segment<3>(3 * a.stencil.vertices[0]) -= m_params.stiffness * gap * a.stencil.normal;
-  }
+  for (const Active& a : m_active)
+    g.segment<3>(3 * a.stencil.vertices[0]) -= penaltyForce(a.stencil.distance) * a.stencil.normal;
 }
 
 void AvatarContactEnergy::addHessian(const Eigen::VectorXd& x, newton::BlockMatrix& h) const {
   std::lock_guard lock(m_mutex);
   update(x);
-  const double k = m_params.stiffness;
   for (const Active& a : m_active) {
     const Eigen::Vector3d& n = a.stencil.normal;
-    // hess E = k n n^T + k (d - thickness) hess d.
-    double coefficient = k * (a.stencil.distance - m_params.thickness) * a.curvature;
+    // With f = dE/dg and s = d2E/dg2 (g = thickness - d): hess E = s n n^T - f hess d.
+    double coefficient = -penaltyForce(a.stencil.distance) * a.curvature;
     if (m_params.projectHessian) coefficient = std::max(coefficient, 0.0);
-    Eigen::Matrix3d block = k * n * n.transpose();
+    Eigen::Matrix3d block = penaltyStiffness(a.stencil.distance) * n * n.transpose();
     if (coefficient != 0.0) block += coefficient * (a.complement - n * n.transpose());
     h.addDynamicBlock(a.stencil.vertices[0], a.stencil.vertices[0], block);
   }

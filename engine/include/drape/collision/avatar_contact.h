@@ -1,6 +1,12 @@
 #pragma once
-// Garment-avatar contact for the Newton drape (newton-drape-pizana 3.2: quadratic penalty, stiffness k):
-//   E(x) = sum_v 0.5 k (thickness - d_v(x))^2  over vertices with signed distance d_v(x) < thickness.
+// Garment-avatar contact for the Newton drape (newton-drape-pizana 3.2: quadratic penalty, stiffness k), with
+// gap g_v = thickness - d_v(x) over vertices with signed distance d_v(x) < thickness:
+//   E_v = 0.5 k g^2                                  while the vertex is outside the body (0 <= d < thickness),
+//   E_v = 0.5 k t^2 + k t u + 0.5 k_in u^2, u = -d    once it is inside (d < 0; t = thickness),
+// C1 at d = 0. The soft band outside models the fabric's thickness (the paper's k = 1e2 N/m); inside, the much
+// stiffer k_in makes the body's surface a wall. A single k was not enough: a garment whose seams close across
+// the body (GarmentCode patterns placed around the body with 20-45 cm gaps) pulls its stitched vertices with
+// forces of tens of newtons, and a 1e2 N/m penalty let them settle several centimetres inside the body.
 // The contact set is recomputed from x on every evaluation, so E is one fixed function of x and the line search
 // compares like with like. This stays cheap because the signed distance is 1-Lipschitz: beginStep stores each
 // vertex's signed distance d0 at the step start, and a vertex that moved by less than d0 - thickness since then
@@ -19,9 +25,12 @@
 namespace drape::collision {
 
 struct ContactParameters {
-  double stiffness = 1e2;    // k, N/m per contact (paper: 10^2)
-  double thickness = 2e-3;   // contact distance, metres (> 0)
+  double stiffness = 1e2;      // k, N/m per contact (paper: 10^2)
+  double thickness = 2e-3;     // contact distance, metres (> 0)
   bool projectHessian = true;  // drop the indefinite curvature part of the Hessian (keep it SPD)
+  // Avatar contact only: the penalty stiffness inside the body is stiffness x insideStiffnessFactor (>= 1;
+  // 1 gives the paper's single quadratic penalty).
+  double insideStiffnessFactor = 100.0;
   // Avatar contact only: distance queries look no farther than this (metres, > thickness). Vertices deeper
   // inside the avatar than this are not pushed out (they are lost causes that a penalty would tear through the
   // body), and far vertices cost almost nothing to query.
@@ -54,12 +63,16 @@ class AvatarContactEnergy : public newton::Energy {
     Eigen::Matrix3d complement = Eigen::Matrix3d::Zero();  // projector off the closest feature's span
   };
   void update(const Eigen::VectorXd& x) const;
+  // Penalty energy, its derivative and second derivative with respect to the gap g = thickness - d (g > 0).
+  double penalty(double distance) const;
+  double penaltyForce(double distance) const;
+  double penaltyStiffness(double distance) const;
 
   std::shared_ptr<const AvatarCollider> m_collider;
   int m_vertexCount = 0;
   ContactParameters m_params;
-  Eigen::VectorXd m_startPositions;      // x at the last beginStep (empty before the first)
-  std::vector<double> m_startDistance;   // signed distance at m_startPositions per vertex
+  Eigen::VectorXd m_startPositions;     // x at the last beginStep (empty before the first)
+  std::vector<double> m_startDistance;  // signed distance at m_startPositions per vertex
   mutable std::mutex m_mutex;
   mutable Eigen::VectorXd m_cachedX;
   mutable std::vector<Active> m_active;
