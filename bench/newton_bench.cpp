@@ -1,24 +1,138 @@
-// Newton drape benchmark: wall time per step of a 1 m x 1 m cloth hanging from its two top corners (the scene of
-// the ARCSim comparison in issue 5), for several resolutions, time steps and speed-up switches measured side by
-// side in one run, so that ratios are meaningful on a loaded machine.
-//   drape_newton_bench [--n 21,51,101] [--h 0.005,0.001] [--steps 10] [--warmup 2] [--configs all|on,off,...]
-// Configurations: "off" (every speed-up off), "on" (every speed-up on, the defaults), "on-X" (all on but X),
-// "off+X" (all off but X), X in {bending, map, parallel}.
+// Newton drape benchmark (docs/BENCHMARKS.md, "Newton drape"). Speed-up switches are measured side by side in one
+// process so that ratios stay meaningful on a loaded machine.
+//
+// Cloth mode (default): wall time per step of a 1 m x 1 m cloth hanging from its two top corners (the scene of
+// the ARCSim comparison in issue 5), for several resolutions and time steps:
+//   drape_newton_bench [--n 21,51,101] [--h 0.005,0.001] [--steps 10] [--warmup 2] [--configs all|table7|on,off,...]
+// Scene mode: a scene file through drape::loadScene + drape::Simulation (the whole engine path of --simulate):
+//   drape_newton_bench --scene FILE [--sim-time 0.2] [--motion-start S] [--set KEY=VALUE]... [--configs ...]
+//                      [--repeat R] [--memory]
+// --motion-start moves the start (and end, keeping the rate) of every moving pin to S seconds, so that a short
+// window shows the twist; --repeat R runs the whole list of configurations R times, interleaved, and keeps the
+// fastest run of each (the loaded-machine noise only ever adds time); --memory prints the peak resident memory (VmHWM) per 100k DOFs, run it alone.
+// Configurations: a base "on" (every speed-up on) or "off" (all off) followed by "+X" / "-X" modifiers, e.g.
+// "off+bending+map", "on-reorder". X in {bending, map, parallel, reorder, fused, warm, mixed}. "all" = off, on and
+// every on-X; "table7" = the cumulative sequence off, off+bending, ... , on (newton-drape-pizana Table 7).
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "drape/newton/newton_solver.h"
+#include "drape/scene/scene.h"
+#include "drape/sim/simulation.h"
 
 using namespace drape::newton;
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// The speed-up switches: name, setting key (scene mode), NewtonSettings member (cloth mode).
+struct Feature {
+  const char* name;
+  const char* key;
+  bool* (*field)(NewtonSettings&);
+};
+const std::vector<Feature>& features() {
+  static const std::vector<Feature> list = {
+      {"bending", "solver.newton.closed_form_bending", [](NewtonSettings& s) { return &s.closedFormBending; }},
+      {"map", "solver.newton.block_map", [](NewtonSettings& s) { return &s.cachedBlockMap; }},
+      {"parallel", "solver.newton.parallel_assembly", [](NewtonSettings& s) { return &s.parallelAssembly; }},
+      {"reorder", "solver.newton.reorder_dofs", [](NewtonSettings& s) { return &s.reorderDofs; }},
+      {"fused", "solver.cg.fused_kernels", [](NewtonSettings& s) { return &s.linear.fusedKernels; }},
+      {"warm", "solver.cg.warm_start", [](NewtonSettings& s) { return &s.linear.warmStart; }},
+      {"mixed", "solver.cg.mixed_precision", [](NewtonSettings& s) { return &s.linear.mixedPrecision; }},
+  };
+  return list;
+}
+
+std::vector<std::string> split(const std::string& s, char sep = ',') {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, sep);) out.push_back(item);
+  return out;
+}
+
+// Configuration name -> on/off per feature (order of features()); false for an unknown name.
+bool parseConfig(const std::string& name, std::vector<bool>& on) {
+  size_t pos = name.find_first_of("+-");
+  const std::string base = name.substr(0, pos);
+  if (base != "on" && base != "off") return false;
+  on.assign(features().size(), base == "on");
+  while (pos != std::string::npos) {
+    const bool value = name[pos] == '+';
+    size_t next = name.find_first_of("+-", pos + 1);
+    const std::string x = name.substr(pos + 1, next == std::string::npos ? std::string::npos : next - pos - 1);
+    size_t k = 0;
+    while (k < features().size() && x != features()[k].name) ++k;
+    if (k == features().size()) return false;
+    on[k] = value;
+    pos = next;
+  }
+  return true;
+}
+
+std::vector<std::string> expandConfigs(const std::string& value) {
+  std::vector<std::string> out;
+  if (value == "all") {
+    out = {"off", "on"};
+    for (const auto& f : features()) out.push_back(std::string("on-") + f.name);
+  } else if (value == "table7") {
+    std::string name = "off";
+    out.push_back(name);
+    for (const auto& f : features()) out.push_back(name += std::string("+") + f.name);
+    out.back() = "on";
+  } else {
+    out = split(value);
+  }
+  return out;
+}
+
+double cpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+// Peak resident set size of this process so far (VmHWM), megabytes.
+double peakResidentMb() {
+  std::ifstream in("/proc/self/status");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("VmHWM:", 0) == 0) return std::atof(line.c_str() + 6) / 1024.0;
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024.0;
+}
+
+struct Result {
+  int steps = 0;
+  double simTime = 0.0, wall = 0.0, cpu = 0.0;
+  double assemblyMs = 0.0, gradientMs = 0.0, solveMs = 0.0;  // per step
+  double newtonPerStep = 0.0, cgPerStep = 0.0;
+  int splits = 0;
+  Eigen::VectorXd x;  // final positions, flat
+  double probe = 0.0;  // one coordinate for the table
+};
+
+void finish(Result& r) {
+  const double n = std::max(1, r.steps);
+  r.assemblyMs *= 1e3 / n;
+  r.gradientMs *= 1e3 / n;
+  r.solveMs *= 1e3 / n;
+  r.newtonPerStep /= n;
+  r.cgPerStep /= n;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Cloth mode.
 
 // n x n vertex square of side 1 m in the x-y plane, hanging from its two top corners (cotton-like fabric).
 ClothModel hangingCloth(int n) {
@@ -54,85 +168,132 @@ ClothModel hangingCloth(int n) {
   return m;
 }
 
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  for (std::string item; std::getline(ss, item, ',');) out.push_back(item);
-  return out;
-}
-
-// Applies a configuration name to the settings; returns false for an unknown name.
-bool configure(const std::string& name, NewtonSettings& s) {
-  auto setAll = [&s](bool on) {
-    s.closedFormBending = s.cachedBlockMap = s.parallelAssembly = on;
-  };
-  auto flag = [&s](const std::string& x) -> bool* {
-    if (x == "bending") return &s.closedFormBending;
-    if (x == "map") return &s.cachedBlockMap;
-    if (x == "parallel") return &s.parallelAssembly;
-    return nullptr;
-  };
-  if (name == "on" || name == "off") {
-    setAll(name == "on");
-    return true;
-  }
-  if (name.rfind("on-", 0) == 0 || name.rfind("off+", 0) == 0) {
-    bool on = name[1] == 'n';
-    setAll(on);
-    bool* f = flag(name.substr(on ? 3 : 4));
-    if (!f) return false;
-    *f = !on;
-    return true;
-  }
-  return false;
-}
-
-struct Result {
-  double msPerStep = 0.0, assemblyMs = 0.0, gradientMs = 0.0, solveMs = 0.0;
-  double newtonPerStep = 0.0, cgPerStep = 0.0, hMean = 0.0, bottomY = 0.0;
-  int splits = 0;
-};
-
-Result run(int n, double h, int steps, int warmup, const std::string& config) {
+Result runCloth(int n, double h, int steps, int warmup, const std::vector<bool>& on) {
   NewtonSettings s;
   s.relaxation = false;
   s.hMax = h;
-  configure(config, s);
+  for (size_t k = 0; k < on.size(); ++k) *features()[k].field(s) = on[k];
   NewtonSolver solver(hangingCloth(n), s);
   for (int k = 0; k < warmup; ++k) solver.step();
   Result r;
   const auto t0 = Clock::now();
+  const double c0 = cpuSeconds();
   for (int k = 0; k < steps; ++k) {
     NewtonStepReport rep = solver.step();
     r.newtonPerStep += rep.newtonIterations;
     r.cgPerStep += rep.cgIterations;
-    r.hMean += rep.h;
     r.splits += rep.splits;
-    r.assemblyMs += 1e3 * rep.hessianSeconds;
-    r.gradientMs += 1e3 * rep.gradientSeconds;
-    r.solveMs += 1e3 * rep.linearSolveSeconds;
+    r.assemblyMs += rep.hessianSeconds;
+    r.gradientMs += rep.gradientSeconds;
+    r.solveMs += rep.linearSolveSeconds;
   }
-  const double total = std::chrono::duration<double>(Clock::now() - t0).count();
-  r.msPerStep = 1e3 * total / steps;
-  r.newtonPerStep /= steps;
-  r.cgPerStep /= steps;
-  r.hMean /= steps;
-  r.assemblyMs /= steps;
-  r.gradientMs /= steps;
-  r.solveMs /= steps;
-  r.bottomY = solver.positions()(3 * (n / 2) + 1);
+  r.wall = std::chrono::duration<double>(Clock::now() - t0).count();
+  r.cpu = cpuSeconds() - c0;
+  r.steps = steps;
+  finish(r);
+  r.x = solver.positions();
+  r.probe = solver.positions()(3 * (n / 2) + 1);
   return r;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Scene mode.
+
+struct SceneOptions {
+  std::string file;
+  double simTime = 0.2;
+  double motionStart = -1.0;  // < 0: as in the scene
+  std::vector<std::pair<std::string, std::string>> overrides;
+};
+
+drape::Scene loadBenchScene(const SceneOptions& o, const std::vector<bool>& on) {
+  drape::SceneRequest request;
+  request.input = o.file;
+  request.overrides = o.overrides;
+  for (size_t k = 0; k < on.size(); ++k) request.overrides.emplace_back(features()[k].key, on[k] ? "true" : "false");
+  request.overrides.emplace_back("solver.max_sim_time", std::to_string(o.simTime));
+  drape::Scene scene = drape::loadScene(request);
+  if (o.motionStart >= 0.0)
+    for (auto& pin : scene.pins)
+      if (pin.moving) {
+        pin.motion.end += o.motionStart - pin.motion.start;
+        pin.motion.start = o.motionStart;
+      }
+  return scene;
+}
+
+Result runScene(const SceneOptions& o, const std::vector<bool>& on) {
+  drape::Simulation sim(loadBenchScene(o, on));
+  Result r;
+  const auto t0 = Clock::now();
+  const double c0 = cpuSeconds();
+  while (!sim.finished()) {
+    const drape::StepReport rep = sim.step();
+    ++r.steps;
+    r.newtonPerStep += rep.iterations;
+    r.cgPerStep += rep.cgIterations;
+    r.splits += rep.splits;
+    r.assemblyMs += rep.assemblyTime;
+    r.gradientMs += rep.gradientTime;
+    r.solveMs += rep.linearSolveTime;
+    if (rep.status == drape::StepStatus::Diverged) break;
+  }
+  r.wall = std::chrono::duration<double>(Clock::now() - t0).count();
+  r.cpu = cpuSeconds() - c0;
+  r.simTime = sim.time();
+  finish(r);
+  const Eigen::MatrixX3d p = sim.positions();
+  r.x.resize(3 * p.rows());
+  for (Eigen::Index i = 0; i < p.rows(); ++i) r.x.segment<3>(3 * i) = p.row(i).transpose();
+  r.probe = p.col(1).minCoeff();
+  return r;
+}
+
+void printHeader(bool scene) {
+  std::printf("| %s | config | steps | wall s | cpu s | ms/step | assembly ms | gradient ms | solve ms | Newton it | "
+              "CG it | splits | speed-up vs first | vs previous | %s | max dx vs first (m) |\n",
+              scene ? "scene" : "vertices | h (ms)", scene ? "lowest y (m)" : "bottom y (m)");
+  std::printf("|---|%s---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n", scene ? "" : "---|");
+}
+
+// previousMs: ms per step of the row above (0 for the first row).
+void printRow(const std::string& what, const std::string& config, const Result& r, const Result& first,
+              double previousMs) {
+  const double msPerStep = 1e3 * r.wall / std::max(1, r.steps);
+  const double firstMs = 1e3 * first.wall / std::max(1, first.steps);
+  double dx = 0.0;
+  if (r.x.size() == first.x.size())
+    for (Eigen::Index i = 0; i < r.x.size(); i += 3) dx = std::max(dx, (r.x.segment<3>(i) - first.x.segment<3>(i)).norm());
+  std::printf("| %s | %s | %d | %.1f | %.1f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %d | %.2fx | %.2fx | %.6f | "
+              "%.1e |\n",
+              what.c_str(), config.c_str(), r.steps, r.wall, r.cpu, msPerStep, r.assemblyMs, r.gradientMs, r.solveMs,
+              r.newtonPerStep, r.cgPerStep, r.splits, firstMs / msPerStep,
+              previousMs > 0.0 ? previousMs / msPerStep : 1.0,
+              r.probe, dx);
+  std::fflush(stdout);
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   std::vector<int> sizes{21, 51, 101};
   std::vector<double> steps{0.005, 0.001};
   int numSteps = 10, warmup = 2;
   std::vector<std::string> configs{"off", "on"};
-  for (int i = 1; i + 1 < argc; i += 2) {
-    std::string key = argv[i], value = argv[i + 1];
+  SceneOptions scene;
+  bool memory = false;
+  int repeat = 1;
+  for (int i = 1; i < argc; ++i) {
+    std::string key = argv[i];
+    if (key == "--memory") {
+      memory = true;
+      continue;
+    }
+    if (i + 1 >= argc) {
+      std::fprintf(stderr, "option %s needs a value\n", key.c_str());
+      return 2;
+    }
+    std::string value = argv[++i];
     if (key == "--n") {
       sizes.clear();
       for (auto& v : split(value)) sizes.push_back(std::atoi(v.c_str()));
@@ -144,35 +305,98 @@ int main(int argc, char** argv) {
     } else if (key == "--warmup") {
       warmup = std::atoi(value.c_str());
     } else if (key == "--configs") {
-      configs = value == "all" ? std::vector<std::string>{"off", "off+bending", "off+map", "off+parallel",
-                                                          "on-bending", "on-map", "on-parallel", "on"}
-                               : split(value);
+      configs = expandConfigs(value);
+    } else if (key == "--repeat") {
+      repeat = std::max(1, std::atoi(value.c_str()));
+    } else if (key == "--scene") {
+      scene.file = value;
+    } else if (key == "--sim-time") {
+      scene.simTime = std::atof(value.c_str());
+    } else if (key == "--motion-start") {
+      scene.motionStart = std::atof(value.c_str());
+    } else if (key == "--set") {
+      const size_t eq = value.find('=');
+      if (eq == std::string::npos) {
+        std::fprintf(stderr, "--set needs KEY=VALUE\n");
+        return 2;
+      }
+      scene.overrides.emplace_back(value.substr(0, eq), value.substr(eq + 1));
     } else {
       std::fprintf(stderr, "unknown option %s\n", key.c_str());
       return 2;
     }
   }
+  std::vector<std::vector<bool>> switches;
   for (const auto& c : configs) {
-    NewtonSettings probe;
-    if (!configure(c, probe)) {
+    switches.emplace_back();
+    if (!parseConfig(c, switches.back())) {
       std::fprintf(stderr, "unknown configuration '%s'\n", c.c_str());
       return 2;
     }
   }
-  std::printf("| vertices | h (ms) | config | ms/step | hessian ms | gradient ms | solve ms | Newton it | CG it | "
-              "splits | speed-up vs first | bottom y (m) |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+
+  if (!scene.file.empty() && memory) {
+    // Peak memory: the process before the simulation (engine + scene + avatar loaded once, then released) and
+    // after a few steps of the first configuration.
+    const double before = peakResidentMb();
+    drape::Simulation sim(loadBenchScene(scene, switches.front()));
+    const double built = peakResidentMb();
+    const int dofs = 3 * sim.garment().vertexCount();
+    int n = 0;
+    while (!sim.finished() && n < numSteps) {
+      sim.step();
+      ++n;
+    }
+    const double after = peakResidentMb();
+    std::printf("| scene | config | DOFs | steps | VmHWM before (MB) | after build (MB) | after steps (MB) | "
+                "simulation MB | MB per 100k DOFs |\n|---|---|---|---|---|---|---|---|---|\n");
+    std::printf("| %s | %s | %d | %d | %.1f | %.1f | %.1f | %.1f | %.1f |\n", scene.file.c_str(), configs.front().c_str(),
+                dofs, n, before, built, after, after - before, (after - before) / (dofs / 1e5));
+    return 0;
+  }
+
+  if (!scene.file.empty()) {
+    std::vector<Result> best(configs.size());
+    for (int k = 0; k < repeat; ++k)
+      for (size_t c = 0; c < configs.size(); ++c) {
+        Result r = runScene(scene, switches[c]);
+        if (k == 0 || r.wall < best[c].wall) best[c] = r;
+        std::fprintf(stderr, "run %d %s: %.1f s\n", k, configs[c].c_str(), r.wall);
+      }
+    printHeader(true);
+    Result first;
+    double previous = 0.0;
+    for (size_t c = 0; c < configs.size(); ++c) {
+      const Result& r = best[c];
+      if (c == 0) first = r;
+      printRow(scene.file, configs[c], r, first, previous);
+      previous = 1e3 * r.wall / std::max(1, r.steps);
+    }
+    return 0;
+  }
+
+  printHeader(false);
   for (int n : sizes)
     for (double h : steps) {
-      double first = 0.0;
-      for (const auto& c : configs) {
-        Result r = run(n, h, numSteps, warmup, c);
-        if (first == 0.0) first = r.msPerStep;
-        std::printf("| %d | %.1f | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %d | %.2fx | %.6f |\n", n * n,
-                    1e3 * h, c.c_str(), r.msPerStep, r.assemblyMs, r.gradientMs, r.solveMs, r.newtonPerStep,
-                    r.cgPerStep, r.splits, first / r.msPerStep, r.bottomY);
-        std::fflush(stdout);
+      std::vector<Result> best(configs.size());
+      for (int k = 0; k < repeat; ++k)
+        for (size_t c = 0; c < configs.size(); ++c) {
+          Result r = runCloth(n, h, numSteps, warmup, switches[c]);
+          if (k == 0 || r.wall < best[c].wall) best[c] = r;
+        }
+      Result first;
+      double previous = 0.0;
+      for (size_t c = 0; c < configs.size(); ++c) {
+        const Result& r = best[c];
+        if (c == 0) first = r;
+        char what[64];
+        std::snprintf(what, sizeof what, "%d | %.1f", n * n, 1e3 * h);
+        printRow(what, configs[c], r, first, previous);
+        previous = 1e3 * r.wall / std::max(1, r.steps);
       }
     }
   return 0;
+} catch (const std::exception& e) {
+  std::fprintf(stderr, "drape_newton_bench: %s\n", e.what());
+  return 1;
 }

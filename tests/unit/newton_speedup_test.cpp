@@ -1,11 +1,18 @@
 // The production speed-ups of the Newton drape solver change nothing beyond round-off: closed-form hinge gradient
 // against automatic differentiation, stencil colouring validity, assembly with the cached block map and coloured
-// parallel loops against the plain serial search-based path, and whole solver runs with every switch on vs off.
+// parallel loops against the plain serial search-based path, and whole solver runs with every switch on vs off;
+// RCM reordering (valid permutation, smaller bandwidth, same matrix) and the PCG variants (fused kernels, warm
+// start, mixed precision) against an independent residual and a CHOLMOD solve.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
+#include <functional>
+#include <numeric>
 #include <random>
 #include <set>
 
+#include "drape/newton/dof_ordering.h"
 #include "drape/newton/hinge_bending.h"
 #include "drape/newton/newton_solver.h"
 #include "drape/newton/stencil_set.h"
@@ -148,5 +155,238 @@ TEST(NewtonSpeedup, SolverResultsIndependentOfSwitches) {
       reference = solver.positions();
     else
       EXPECT_LT((solver.positions() - reference).norm(), 1e-8 * reference.norm());
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// DOF reordering (6.4), fused / warm-started / mixed-precision PCG.
+
+namespace {
+
+// Couplings of an n x n grid triangulated as grid() (edges and diagonals), vertices renamed by a seeded shuffle
+// so that the input numbering has a large bandwidth.
+std::vector<std::pair<int, int>> shuffledGridCouplings(int n, unsigned seed, std::vector<int>* name = nullptr) {
+  std::vector<int> id(n * n);
+  std::iota(id.begin(), id.end(), 0);
+  std::shuffle(id.begin(), id.end(), std::mt19937(seed));
+  std::vector<std::pair<int, int>> pairs;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const int a = i * n + j;
+      if (j + 1 < n) pairs.emplace_back(id[a], id[a + 1]);
+      if (i + 1 < n) pairs.emplace_back(id[a], id[a + n]);
+      if (i + 1 < n && j + 1 < n) pairs.emplace_back(id[a], id[a + n + 1]);
+    }
+  if (name) *name = id;
+  return pairs;
+}
+
+bool isPermutation(const std::vector<int>& order, int n) {
+  if (static_cast<int>(order.size()) != n) return false;
+  std::vector<int> seen(n, 0);
+  for (int v : order) {
+    if (v < 0 || v >= n || seen[v]++) return false;
+  }
+  return true;
+}
+
+// An SPD block matrix on the shuffled grid pattern: random symmetric couplings, diagonally dominant diagonal.
+void fillSpd(BlockMatrix& a, const std::vector<std::pair<int, int>>& pairs, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  a.setZero();
+  std::vector<double> rowSum(a.numBlocks(), 0.0);
+  for (const auto& [i, j] : pairs) {
+    Eigen::Matrix3d b = Eigen::Matrix3d::NullaryExpr([&] { return u(rng); });
+    a.addBlock(i, j, b);
+    rowSum[i] += b.cwiseAbs().sum();
+    rowSum[j] += b.cwiseAbs().sum();
+  }
+  for (int i = 0; i < a.numBlocks(); ++i) {
+    Eigen::Matrix3d d = Eigen::Matrix3d::NullaryExpr([&] { return u(rng); });
+    a.addBlock(i, i, d + d.transpose() + (rowSum[i] + 6.0) * Eigen::Matrix3d::Identity());
+  }
+}
+
+}  // namespace
+
+TEST(NewtonSpeedup, RcmIsPermutationAndShrinksGridBandwidth) {
+  const int n = 30;
+  const auto pairs = shuffledGridCouplings(n, 7);
+  const auto adj = adjacencyLists(n * n, pairs);
+  const std::vector<int> order = reverseCuthillMcKee(adj);
+  ASSERT_TRUE(isPermutation(order, n * n));
+  const std::vector<int> position = invertPermutation(order);
+  for (int k = 0; k < n * n; ++k) EXPECT_EQ(position[order[k]], k);
+  const int before = graphBandwidth(adj), after = graphBandwidth(adj, position);
+  EXPECT_GT(before, n * n / 2);  // the shuffle spreads neighbours over the whole numbering
+  // A level-set ordering of an n x n grid with diagonals needs about n + 1; allow a little slack.
+  EXPECT_LE(after, n + 3) << "bandwidth before " << before;
+  EXPECT_GE(after, n);  // cannot beat the grid's own bound (a row's neighbours lie a whole level away)
+
+  // Several components and an isolated node: still a permutation, each component numbered contiguously.
+  std::vector<std::pair<int, int>> two = {{0, 2}, {2, 4}, {1, 3}, {3, 5}, {5, 7}};
+  const std::vector<int> o2 = reverseCuthillMcKee(adjacencyLists(9, two));
+  ASSERT_TRUE(isPermutation(o2, 9));
+  const std::vector<int> p2 = invertPermutation(o2);
+  EXPECT_EQ(std::abs(p2[0] - p2[4]), 2);  // the path 0-2-4 occupies three consecutive positions
+  EXPECT_EQ(std::abs(p2[1] - p2[7]), 3);  // the path 1-3-5-7 four
+}
+
+TEST(NewtonSpeedup, ReorderedBlockMatrixIsTheSameMatrix) {
+  const int n = 25;
+  const auto pairs = shuffledGridCouplings(n, 8);
+  BlockMatrix plain(n * n, pairs, false), reordered(n * n, pairs, true);
+  ASSERT_TRUE(reordered.reordered());
+  EXPECT_EQ(plain.staticBlockCount(), reordered.staticBlockCount());
+  EXPECT_LE(reordered.bandwidth(), n + 3);
+  EXPECT_GT(plain.bandwidth(), 10 * reordered.bandwidth());
+  fillSpd(plain, pairs, 9);
+  fillSpd(reordered, pairs, 9);
+  plain.addDynamicBlock(3, 400, Eigen::Matrix3d::Identity());  // a contact outside the pattern
+  reordered.addDynamicBlock(3, 400, Eigen::Matrix3d::Identity());
+  const Eigen::SparseMatrix<double> sp = plain.toSparse(), sr = reordered.toSparse();
+  EXPECT_EQ((sp - sr).norm(), 0.0);
+  for (int i : {0, 17, 624}) EXPECT_EQ((plain.diagonalBlock(i) - reordered.diagonalBlock(i)).norm(), 0.0);
+  Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(3 * n * n, -1.0, 2.0);
+  EXPECT_LT((reordered * x - sp * x).norm(), 1e-12 * (sp * x).norm());
+  Eigen::VectorXd xi, back;
+  reordered.toInternal(x, xi);
+  reordered.toOriginal(xi, back);
+  EXPECT_EQ((back - x).norm(), 0.0);
+  EXPECT_EQ(xi.segment<3>(3 * reordered.internalIndex(5)), x.segment<3>(15));
+}
+
+TEST(NewtonSpeedup, PcgVariantsMeetTheToleranceAndAgreeWithCholmod) {
+  const int n = 40;  // 1600 block rows: several parallel chunks in the fused kernels
+  const auto pairs = shuffledGridCouplings(n, 10);
+  Eigen::VectorXd b(3 * n * n);
+  for (Eigen::Index k = 0; k < b.size(); ++k) b(k) = std::sin(0.37 * (k + 1));
+  BlockMatrix ref(n * n, pairs, false);
+  fillSpd(ref, pairs, 11);
+  const Eigen::SparseMatrix<double> s = ref.toSparse();
+  LinearSolveOptions direct;
+  direct.kind = LinearSolverKind::Cholmod;
+  Eigen::VectorXd exact;
+  ASSERT_TRUE(solveLinear(ref, b, exact, direct).ok);
+  ASSERT_LT((s * exact - b).norm(), 1e-10 * b.norm());
+  for (bool reorder : {false, true})
+    for (bool fused : {false, true})
+      for (bool mixed : {false, true})
+        for (Preconditioner pre : {Preconditioner::BlockJacobi, Preconditioner::Diagonal, Preconditioner::None}) {
+          BlockMatrix a(n * n, pairs, reorder);
+          fillSpd(a, pairs, 11);
+          LinearSolveOptions o;
+          o.fusedKernels = fused;
+          o.mixedPrecision = mixed;
+          o.preconditioner = pre;
+          o.tolerance = mixed ? 1e-5 : 1e-10;
+          Eigen::VectorXd x;
+          const LinearSolveResult r = solveLinear(a, b, x, o);
+          const std::string what = "reorder " + std::to_string(reorder) + " fused " + std::to_string(fused) +
+                                   " mixed " + std::to_string(mixed) + " pre " + std::to_string(int(pre));
+          ASSERT_TRUE(r.ok) << what;
+          EXPECT_GT(r.iterations, 3) << what;
+          const double trueResidual = (s * x - b).norm() / b.norm();  // independent of the solver's own report
+          EXPECT_NEAR(r.relativeResidual, trueResidual, 1e-9 + 1e-3 * trueResidual) << what;
+          EXPECT_LT(trueResidual, mixed ? 2e-5 : 1e-9) << what;
+          EXPECT_LT((x - exact).norm(), (mixed ? 1e-4 : 1e-8) * exact.norm()) << what;
+        }
+}
+
+TEST(NewtonSpeedup, WarmStartNeedsFewerIterations) {
+  const int n = 30;
+  const auto pairs = shuffledGridCouplings(n, 12);
+  // Graph Laplacian + small shift: SPD and ill-conditioned like a cloth stiffness matrix (many PCG iterations).
+  BlockMatrix a(n * n, pairs, true);
+  for (const auto& [i, j] : pairs) {
+    a.addBlock(i, j, -Eigen::Matrix3d::Identity());
+    a.addBlock(i, i, Eigen::Matrix3d::Identity());
+    a.addBlock(j, j, Eigen::Matrix3d::Identity());
+  }
+  for (int i = 0; i < n * n; ++i) a.addBlock(i, i, 1e-3 * Eigen::Matrix3d::Identity());
+  Eigen::VectorXd b(3 * n * n);
+  for (Eigen::Index k = 0; k < b.size(); ++k) b(k) = std::cos(0.11 * (k + 1));
+  for (bool fused : {false, true}) {
+    LinearSolveOptions o;
+    o.fusedKernels = fused;
+    o.tolerance = 1e-8;
+    Eigen::VectorXd exact;
+    const LinearSolveResult cold = solveLinear(a, b, exact, o);  // x empty: cold start
+    ASSERT_TRUE(cold.ok);
+    // Guesses 1 % and 1e-5 off the solution: the warm solves meet the same tolerance in fewer iterations, the
+    // better guess in clearly fewer.
+    Eigen::VectorXd x = 1.01 * exact;
+    const LinearSolveResult warm = solveLinear(a, b, x, o);
+    ASSERT_TRUE(warm.ok);
+    EXPECT_LT(warm.relativeResidual, 1e-8);
+    EXPECT_LT(warm.iterations, cold.iterations * 9 / 10) << "cold " << cold.iterations;
+    x = (1.0 + 1e-5) * exact;
+    const LinearSolveResult close = solveLinear(a, b, x, o);
+    EXPECT_LT(close.relativeResidual, 1e-8);
+    EXPECT_LT(close.iterations, cold.iterations * 2 / 3) << "cold " << cold.iterations;
+    // The solution itself as the guess: no iteration at all; warm start off: the guess is ignored.
+    x = exact;
+    EXPECT_EQ(solveLinear(a, b, x, o).iterations, 0);
+    o.warmStart = false;
+    x = exact;
+    EXPECT_EQ(solveLinear(a, b, x, o).iterations, cold.iterations);
+  }
+}
+
+TEST(NewtonSpeedup, SolverSwitchesReachTheSameState) {
+  const int n = 25;  // 625 vertices: the fused kernels run in two parallel chunks
+  ClothModel m = grid(n, 1.0 / (n - 1), 0.0, 14);
+  m.pinned = {n * (n - 1), n * n - 1};
+  auto run = [&m](const std::function<void(NewtonSettings&)>& configure) {
+    NewtonSettings s;
+    s.relaxation = false;
+    configure(s);
+    NewtonSolver solver(m, s);
+    for (int k = 0; k < 25; ++k) EXPECT_EQ(solver.step().status, NewtonStatus::Converged);
+    return Eigen::VectorXd(solver.positions());
+  };
+  // Reference: every new switch off, tight PCG tolerance; and the same at the default tau_cg = 1e-2.
+  auto allOff = [](NewtonSettings& s) {
+    s.reorderDofs = s.linear.warmStart = s.linear.fusedKernels = s.linear.mixedPrecision = false;
+  };
+  const Eigen::VectorXd ref = run([&](NewtonSettings& s) {
+    allOff(s);
+    s.linear.tolerance = 1e-10;
+  });
+  const Eigen::VectorXd off = run(allOff);
+  const double moved = (ref - m.positions).norm();
+  ASSERT_GT(moved, 1e-2);
+  // What the PCG tolerance alone changes (a few tenths of a percent of the motion over 25 steps).
+  const double cgEffect = (off - ref).norm();
+  EXPECT_LT(cgEffect, 2e-2 * moved);
+  // Exact reformulations (same PCG iterates up to round-off): reordering and the fused kernels, alone and together,
+  // at the tight and at the default tolerance.
+  for (double tol : {1e-10, 1e-2}) {
+    const Eigen::VectorXd base = tol < 1e-3 ? ref : off;
+    for (int mask = 1; mask < 4; ++mask) {
+      const Eigen::VectorXd x = run([&](NewtonSettings& s) {
+        allOff(s);
+        s.reorderDofs = mask & 1;
+        s.linear.fusedKernels = mask & 2;
+        s.linear.tolerance = tol;
+      });
+      EXPECT_LT((x - base).norm(), 1e-7 * moved) << "reorder " << (mask & 1) << " fused " << (mask & 2) << " tol " << tol;
+    }
+  }
+  // Warm start and mixed precision change the PCG iterates within its tolerance: each alone, all together and the
+  // defaults end no further from the tight reference than the all-off run at the same tolerance (+50 %).
+  std::vector<std::pair<std::string, std::function<void(NewtonSettings&)>>> configs = {
+      {"warm", [&](NewtonSettings& s) { allOff(s), s.linear.warmStart = true; }},
+      {"mixed", [&](NewtonSettings& s) { allOff(s), s.linear.mixedPrecision = true; }},
+      {"all on", [](NewtonSettings& s) { s.linear.mixedPrecision = true; }},
+      {"defaults", [](NewtonSettings&) {}},
+  };
+  std::printf("  all off  |x - x_ref| / |x_ref - x0| = %.2e\n", cgEffect / moved);
+  for (const auto& [name, configure] : configs) {
+    const Eigen::VectorXd x = run(configure);
+    const double diff = (x - ref).norm();
+    EXPECT_LT(diff, 1.5 * cgEffect) << name;
+    std::printf("  %-8s |x - x_ref| / |x_ref - x0| = %.2e\n", name.c_str(), diff / moved);
   }
 }

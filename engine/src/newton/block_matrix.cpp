@@ -5,25 +5,35 @@
 #include <algorithm>
 #include <atomic>
 #include <cassert>
+#include <cstdlib>
+
+#include "drape/newton/dof_ordering.h"
 
 namespace drape::newton {
 
-BlockMatrix::BlockMatrix(int numBlocks, const std::vector<std::pair<int, int>>& couplings) {
-  build(numBlocks, couplings);
+BlockMatrix::BlockMatrix(int numBlocks, const std::vector<std::pair<int, int>>& couplings, bool reorder) {
+  build(numBlocks, couplings, reorder);
 }
 
-void BlockMatrix::build(int numBlocks, const std::vector<std::pair<int, int>>& couplings) {
+void BlockMatrix::build(int numBlocks, const std::vector<std::pair<int, int>>& couplings, bool reorder) {
   static std::atomic<long> nextPatternId{0};
   m_patternId = nextPatternId.fetch_add(1);
   m_numBlocks = numBlocks;
-  std::vector<std::vector<int>> rows(numBlocks);
-  for (int i = 0; i < numBlocks; ++i) rows[i].push_back(i);
-  for (const auto& [a, b] : couplings) {
-    assert(a >= 0 && a < numBlocks && b >= 0 && b < numBlocks);
-    if (a == b) continue;
-    rows[a].push_back(b);
-    rows[b].push_back(a);
+  m_order.clear();
+  m_position.clear();
+  std::vector<std::vector<int>> rows = adjacencyLists(numBlocks, couplings);
+  if (reorder) {
+    m_order = reverseCuthillMcKee(rows);
+    m_position = invertPermutation(m_order);
+    std::vector<std::vector<int>> permuted(numBlocks);
+    for (int i = 0; i < numBlocks; ++i) {
+      auto& r = permuted[m_position[i]];
+      r.reserve(rows[i].size() + 1);
+      for (int j : rows[i]) r.push_back(m_position[j]);
+    }
+    rows.swap(permuted);
   }
+  for (int i = 0; i < numBlocks; ++i) rows[i].push_back(i);
   m_rowStart.assign(numBlocks + 1, 0);
   m_cols.clear();
   m_diag.assign(numBlocks, -1);
@@ -46,8 +56,17 @@ void BlockMatrix::setZero() {
   m_dynamic.clear();
 }
 
+int BlockMatrix::bandwidth() const {
+  int bw = 0;
+  for (int r = 0; r < m_numBlocks; ++r)
+    for (int k = m_rowStart[r]; k < m_rowStart[r + 1]; ++k) bw = std::max(bw, std::abs(m_cols[k] - r));
+  return bw;
+}
+
 int BlockMatrix::findBlock(int i, int j) const {
   if (i < 0 || j < 0 || i >= m_numBlocks || j >= m_numBlocks) return -1;
+  i = internalIndex(i);
+  j = internalIndex(j);
   auto begin = m_cols.begin() + m_rowStart[i];
   auto end = m_cols.begin() + m_rowStart[i + 1];
   auto it = std::lower_bound(begin, end, j);
@@ -71,7 +90,7 @@ void BlockMatrix::addDynamicBlock(int i, int j, const Eigen::Matrix3d& b) {
 }
 
 Eigen::Matrix3d BlockMatrix::fullDiagonalBlock(int i) const {
-  Eigen::Matrix3d d = m_blocks[m_diag[i]];
+  Eigen::Matrix3d d = diagonalBlock(i);
   for (const auto& e : m_dynamic)
     if (e.i == i && e.j == i) d += e.block;
   return d;
@@ -80,10 +99,13 @@ Eigen::Matrix3d BlockMatrix::fullDiagonalBlock(int i) const {
 void BlockMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   assert(x.size() == size());
   y.resize(size());
+  // Vertex order: row i is storage row internalIndex(i), column c holds vertex originalIndex(c).
   tbb::parallel_for(tbb::blocked_range<int>(0, m_numBlocks, 256), [&](const tbb::blocked_range<int>& range) {
     for (int i = range.begin(); i < range.end(); ++i) {
+      const int r = internalIndex(i);
       Eigen::Vector3d acc = Eigen::Vector3d::Zero();
-      for (int k = m_rowStart[i]; k < m_rowStart[i + 1]; ++k) acc += m_blocks[k] * x.segment<3>(3 * m_cols[k]);
+      for (int k = m_rowStart[r]; k < m_rowStart[r + 1]; ++k)
+        acc += m_blocks[k] * x.segment<3>(3 * originalIndex(m_cols[k]));
       y.segment<3>(3 * i) = acc;
     }
   });
@@ -107,8 +129,8 @@ Eigen::SparseMatrix<double> BlockMatrix::toSparse() const {
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) t.emplace_back(3 * i + r, 3 * j + c, b(r, c));
   };
-  for (int i = 0; i < m_numBlocks; ++i)
-    for (int k = m_rowStart[i]; k < m_rowStart[i + 1]; ++k) put(i, m_cols[k], m_blocks[k]);
+  for (int r = 0; r < m_numBlocks; ++r)
+    for (int k = m_rowStart[r]; k < m_rowStart[r + 1]; ++k) put(originalIndex(r), originalIndex(m_cols[k]), m_blocks[k]);
   for (const auto& e : m_dynamic) {
     put(e.i, e.j, e.block);
     if (e.i != e.j) put(e.j, e.i, e.block.transpose());

@@ -1,22 +1,38 @@
 #include "drape/newton/linear_solve.h"
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
 #include <Eigen/CholmodSupport>
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/LU>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 namespace drape::newton {
 namespace {
 
-// Preconditioned conjugate gradients from x = 0; applyA(p, out), applyP(r, out). Returns the iteration count.
+// ---------------------------------------------------------------------------------------------------------------
+// Plain PCG on Eigen vectors (the reference path, and the only one for incomplete Cholesky).
+
+// Preconditioned conjugate gradients from x (warm) or 0; applyA(p, out), applyP(r, out). Returns the iterations.
 template <typename Vec, typename ApplyA, typename ApplyP>
-int pcg(const ApplyA& applyA, const ApplyP& applyP, const Vec& b, Vec& x, double tol, int maxIt) {
+int pcg(const ApplyA& applyA, const ApplyP& applyP, const Vec& b, Vec& x, double tol, int maxIt, bool warm) {
   using S = typename Vec::Scalar;
-  x.setZero(b.size());
   Vec r = b, z(b.size()), ap(b.size());
+  if (warm) {
+    applyA(x, ap);
+    r -= ap;
+  } else {
+    x.setZero(b.size());
+  }
   double bNorm = static_cast<double>(b.norm());
-  if (bNorm == 0.0) return 0;
+  if (bNorm == 0.0) {
+    x.setZero(b.size());
+    return 0;
+  }
+  if (static_cast<double>(r.norm()) <= tol * bNorm) return 0;
   applyP(r, z);
   Vec p = z;
   S rz = r.dot(z);
@@ -38,69 +54,268 @@ int pcg(const ApplyA& applyA, const ApplyP& applyP, const Vec& b, Vec& x, double
   return it;
 }
 
-// Per-scalar-row inverse diagonal or per-block inverse 3x3 of A (including dynamic diagonal contributions).
+// Inverse 3x3 diagonal blocks (blocks = true) or inverse scalar diagonal of A including dynamic (i, i) entries,
+// indexed by storage row (storage = true) or by vertex.
+template <typename S>
+std::vector<Eigen::Matrix<S, 3, 3>> inverseDiagonal(const BlockMatrix& a, bool blocks, bool storage) {
+  const int n = a.numBlocks();
+  std::vector<Eigen::Matrix3d> diag(n);
+  for (int i = 0; i < n; ++i) diag[i] = a.diagonalBlock(i);
+  for (const auto& e : a.dynamicEntries())
+    if (e.i == e.j) diag[e.i] += e.block;
+  std::vector<Eigen::Matrix<S, 3, 3>> inv(n);
+  for (int i = 0; i < n; ++i) {
+    Eigen::Matrix3d d = diag[i];
+    if (!blocks) d = Eigen::Matrix3d(d.diagonal().asDiagonal());
+    Eigen::Matrix3d di = d.inverse();
+    if (!di.allFinite()) di = Eigen::Matrix3d::Identity();
+    inv[storage ? a.internalIndex(i) : i] = di.cast<S>();
+  }
+  return inv;
+}
+
 template <typename S>
 struct BlockPreconditioner {
   std::vector<Eigen::Matrix<S, 3, 3>> inv;
-  BlockPreconditioner(const BlockMatrix& a, bool blocks) : inv(a.numBlocks()) {
-    std::vector<Eigen::Matrix3d> diag(a.numBlocks());
-    for (int i = 0; i < a.numBlocks(); ++i) diag[i] = a.diagonalBlock(i);
-    for (const auto& e : a.dynamicEntries())
-      if (e.i == e.j) diag[e.i] += e.block;
-    for (int i = 0; i < a.numBlocks(); ++i) {
-      Eigen::Matrix3d d = diag[i];
-      if (!blocks) d = Eigen::Matrix3d(d.diagonal().asDiagonal());
-      Eigen::Matrix3d di = d.inverse();
-      if (!di.allFinite()) di = Eigen::Matrix3d::Identity();
-      inv[i] = di.cast<S>();
-    }
-  }
+  BlockPreconditioner(const BlockMatrix& a, bool blocks) : inv(inverseDiagonal<S>(a, blocks, false)) {}
   template <typename Vec>
   void operator()(const Vec& r, Vec& z) const {
     for (size_t i = 0; i < inv.size(); ++i) z.template segment<3>(3 * i) = inv[i] * r.template segment<3>(3 * i);
   }
 };
 
-}  // namespace
+// ---------------------------------------------------------------------------------------------------------------
+// Fused block PCG in storage order.
 
-LinearSolveResult solveLinear(const BlockMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                              const LinearSolveOptions& options) {
+constexpr int kRowGrain = 512;  // block rows per TBB chunk (smaller systems run serially)
+
+// Sum over block rows [0, n) of f(begin, end) (a double, or an Eigen::Vector2d for two sums at once), in fixed
+// chunks with a deterministic reduction tree so that results do not depend on thread timing.
+template <typename T = double, typename F>
+T reduceRows(int n, const F& f) {
+  if (n <= kRowGrain) return f(0, n);
+  T zero;
+  if constexpr (std::is_same_v<T, double>)
+    zero = 0.0;
+  else
+    zero = T::Zero();
+  return tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<int>(0, n, kRowGrain), zero,
+      [&f](const tbb::blocked_range<int>& r, T acc) -> T { return acc + f(r.begin(), r.end()); },
+      [](const T& u, const T& v) -> T { return u + v; });
+}
+
+template <typename F>
+void forRows(int n, const F& f) {
+  if (n <= kRowGrain) return f(0, n);
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, kRowGrain),
+                    [&f](const tbb::blocked_range<int>& r) { f(r.begin(), r.end()); });
+}
+
+// The matrix in storage order with scalar S: static blocks (double ones used in place, float ones copied) and the
+// dynamic entries renumbered to storage rows.
+template <typename S>
+struct StorageMatrix {
+  using Mat3 = Eigen::Matrix<S, 3, 3>;
+  using Vec = Eigen::Matrix<S, Eigen::Dynamic, 1>;
+  struct Entry {
+    int i, j;
+    Mat3 block;
+  };
+  const Mat3* blocks = nullptr;
+  std::vector<Mat3> copy;  // float blocks when S != double
+  const int* rowStart = nullptr;
+  const int* cols = nullptr;
+  int n = 0;
+  std::vector<Entry> dynamic;
+
+  explicit StorageMatrix(const BlockMatrix& a) : rowStart(a.rowStarts()), cols(a.colIndices()), n(a.numBlocks()) {
+    if constexpr (std::is_same_v<S, double>) {
+      blocks = a.blocks().data();
+    } else {
+      copy.resize(a.blocks().size());
+      const auto& src = a.blocks();
+      forRows(n, [&](int r0, int r1) {
+        for (int k = rowStart[r0]; k < rowStart[r1]; ++k) copy[k] = src[k].template cast<S>();
+      });
+      blocks = copy.data();
+    }
+    for (const auto& e : a.dynamicEntries())
+      dynamic.push_back({a.internalIndex(e.i), a.internalIndex(e.j), e.block.template cast<S>()});
+  }
+
+  // y = A x; returns x . y (accumulated in double).
+  double multiplyDot(const Vec& x, Vec& y) const {
+    double dot = reduceRows<double>(n, [&](int r0, int r1) {
+      double acc = 0.0;
+      for (int r = r0; r < r1; ++r) {
+        Eigen::Matrix<S, 3, 1> s = Eigen::Matrix<S, 3, 1>::Zero();
+        for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) s.noalias() += blocks[k] * x.template segment<3>(3 * cols[k]);
+        y.template segment<3>(3 * r) = s;
+        acc += static_cast<double>(x.template segment<3>(3 * r).dot(s));
+      }
+      return acc;
+    });
+    for (const auto& e : dynamic) {
+      const Eigen::Matrix<S, 3, 1> bij = e.block * x.template segment<3>(3 * e.j);
+      y.template segment<3>(3 * e.i) += bij;
+      dot += static_cast<double>(x.template segment<3>(3 * e.i).dot(bij));
+      if (e.i != e.j) {
+        const Eigen::Matrix<S, 3, 1> bji = e.block.transpose() * x.template segment<3>(3 * e.i);
+        y.template segment<3>(3 * e.j) += bji;
+        dot += static_cast<double>(x.template segment<3>(3 * e.j).dot(bji));
+      }
+    }
+    return dot;
+  }
+};
+
+// PCG on storage-ordered vectors; x in/out (initial guess when warm). Returns the iteration count.
+template <typename S>
+int fusedPcg(const StorageMatrix<S>& a, const std::vector<Eigen::Matrix<S, 3, 3>>& inv,
+             const Eigen::Matrix<S, Eigen::Dynamic, 1>& b, Eigen::Matrix<S, Eigen::Dynamic, 1>& x, double tol,
+             int maxIt, bool warm) {
+  using Vec = Eigen::Matrix<S, Eigen::Dynamic, 1>;
+  const int n = a.n;
+  Vec r(b.size()), z(b.size()), p(b.size()), ap(b.size());
+  const double bNorm2 = reduceRows<double>(n, [&](int r0, int r1) {
+    return static_cast<double>(b.segment(3 * r0, 3 * (r1 - r0)).squaredNorm());
+  });
+  if (bNorm2 == 0.0 || !warm) x.setZero(b.size());
+  if (bNorm2 == 0.0) return 0;
+  const double stop2 = tol * tol * bNorm2;
+  if (warm) a.multiplyDot(x, ap);
+  // r = b - A x, z = P r, p = z; (r.z, r.r).
+  Eigen::Vector2d sums = reduceRows<Eigen::Vector2d>(n, [&](int r0, int r1) {
+    Eigen::Vector2d acc = Eigen::Vector2d::Zero();
+    for (int i = r0; i < r1; ++i) {
+      Eigen::Matrix<S, 3, 1> ri = b.template segment<3>(3 * i);
+      if (warm) ri -= ap.template segment<3>(3 * i);
+      const Eigen::Matrix<S, 3, 1> zi = inv[i] * ri;
+      r.template segment<3>(3 * i) = ri;
+      z.template segment<3>(3 * i) = zi;
+      p.template segment<3>(3 * i) = zi;
+      acc += Eigen::Vector2d(static_cast<double>(ri.dot(zi)), static_cast<double>(ri.squaredNorm()));
+    }
+    return acc;
+  });
+  double rz = sums(0);
+  if (sums(1) <= stop2) return 0;
+  int it = 0;
+  while (it < maxIt) {
+    const double pap = a.multiplyDot(p, ap);
+    if (!(std::abs(pap) > 0.0) || !std::isfinite(pap)) break;
+    const S alpha = static_cast<S>(rz / pap);
+    // x += alpha p, r -= alpha Ap, z = P r; (r.z, r.r) in the same pass.
+    sums = reduceRows<Eigen::Vector2d>(n, [&](int r0, int r1) {
+      Eigen::Vector2d acc = Eigen::Vector2d::Zero();
+      for (int i = r0; i < r1; ++i) {
+        x.template segment<3>(3 * i) += alpha * p.template segment<3>(3 * i);
+        const Eigen::Matrix<S, 3, 1> ri = r.template segment<3>(3 * i) - alpha * ap.template segment<3>(3 * i);
+        const Eigen::Matrix<S, 3, 1> zi = inv[i] * ri;
+        r.template segment<3>(3 * i) = ri;
+        z.template segment<3>(3 * i) = zi;
+        acc += Eigen::Vector2d(static_cast<double>(ri.dot(zi)), static_cast<double>(ri.squaredNorm()));
+      }
+      return acc;
+    });
+    const double rzNew = sums(0);
+    ++it;
+    if (sums(1) <= stop2) break;
+    const S beta = static_cast<S>(rzNew / rz);
+    forRows(n, [&](int r0, int r1) {
+      for (int i = 3 * r0; i < 3 * r1; ++i) p[i] = z[i] + beta * p[i];
+    });
+    rz = rzNew;
+  }
+  return it;
+}
+
+template <typename S>
+LinearSolveResult fusedSolve(const BlockMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                             const LinearSolveOptions& options, bool warm) {
+  using Vec = Eigen::Matrix<S, Eigen::Dynamic, 1>;
+  LinearSolveResult result;
+  std::vector<Eigen::Matrix<S, 3, 3>> inv;
+  if (options.preconditioner == Preconditioner::None)
+    inv.assign(a.numBlocks(), Eigen::Matrix<S, 3, 3>::Identity());
+  else
+    inv = inverseDiagonal<S>(a, options.preconditioner == Preconditioner::BlockJacobi, true);
+  Eigen::VectorXd bi, xi;
+  a.toInternal(b, bi);
+  if (warm) a.toInternal(x, xi);
+  StorageMatrix<S> m(a);
+  Vec bs = bi.cast<S>(), xs;
+  if (warm) xs = xi.cast<S>();
+  result.iterations = fusedPcg<S>(m, inv, bs, xs, options.tolerance, options.maxIterations, warm);
+  xi = xs.template cast<double>();
+  if (!xi.allFinite()) return result;
+  // True residual in double precision.
+  StorageMatrix<double> md(a);
+  Eigen::VectorXd axi(xi.size());
+  md.multiplyDot(xi, axi);
+  const double bNorm = bi.norm();
+  result.relativeResidual = bNorm > 0.0 ? (axi - bi).norm() / bNorm : 0.0;
+  a.toOriginal(xi, x);
+  result.ok = true;
+  return result;
+}
+
+LinearSolveResult plainSolve(const BlockMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                             const LinearSolveOptions& options, bool warm) {
   LinearSolveResult result;
   const double tol = options.tolerance;
   const int maxIt = options.maxIterations;
-  if (options.kind == LinearSolverKind::Cholmod) {
-    Eigen::SparseMatrix<double> s = a.toSparse();
-    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> chol(s);
-    if (chol.info() != Eigen::Success) return result;
-    x = chol.solve(b);
-  } else if (options.mixedPrecision) {
+  if (options.mixedPrecision) {
     Eigen::SparseMatrix<float, Eigen::RowMajor> s = a.toSparse().cast<float>();
     Eigen::VectorXf bf = b.cast<float>(), xf;
+    if (warm) xf = x.cast<float>();
     auto applyA = [&s](const Eigen::VectorXf& p, Eigen::VectorXf& out) { out.noalias() = s * p; };
     if (options.preconditioner == Preconditioner::IncompleteCholesky) {
       Eigen::SparseMatrix<float> sc = s;
       Eigen::IncompleteCholesky<float> ic(sc);
       auto applyP = [&ic](const Eigen::VectorXf& r, Eigen::VectorXf& z) { z = ic.solve(r); };
-      result.iterations = pcg(applyA, applyP, bf, xf, tol, maxIt);
+      result.iterations = pcg(applyA, applyP, bf, xf, tol, maxIt, warm);
     } else if (options.preconditioner == Preconditioner::None) {
-      result.iterations = pcg(applyA, [](const Eigen::VectorXf& r, Eigen::VectorXf& z) { z = r; }, bf, xf, tol, maxIt);
+      auto identity = [](const Eigen::VectorXf& r, Eigen::VectorXf& z) { z = r; };
+      result.iterations = pcg(applyA, identity, bf, xf, tol, maxIt, warm);
     } else {
       BlockPreconditioner<float> pre(a, options.preconditioner == Preconditioner::BlockJacobi);
-      result.iterations = pcg(applyA, pre, bf, xf, tol, maxIt);
+      result.iterations = pcg(applyA, pre, bf, xf, tol, maxIt, warm);
     }
     x = xf.cast<double>();
   } else {
     auto applyA = [&a](const Eigen::VectorXd& p, Eigen::VectorXd& out) { a.multiply(p, out); };
-    if (options.preconditioner == Preconditioner::IncompleteCholesky) {
+    if (options.preconditioner != Preconditioner::IncompleteCholesky && a.reordered()) {
+      // Storage (RCM) order: permute once, SpMV over contiguous block rows.
+      StorageMatrix<double> m(a);
+      auto applyStorage = [&m](const Eigen::VectorXd& p, Eigen::VectorXd& out) {
+        out.resize(p.size());
+        m.multiplyDot(p, out);
+      };
+      Eigen::VectorXd bi, xi;
+      a.toInternal(b, bi);
+      if (warm) a.toInternal(x, xi);
+      if (options.preconditioner == Preconditioner::None) {
+        auto identity = [](const Eigen::VectorXd& r, Eigen::VectorXd& z) { z = r; };
+        result.iterations = pcg(applyStorage, identity, bi, xi, tol, maxIt, warm);
+      } else {
+        BlockPreconditioner<double> pre(a, options.preconditioner == Preconditioner::BlockJacobi);
+        pre.inv = inverseDiagonal<double>(a, options.preconditioner == Preconditioner::BlockJacobi, true);
+        result.iterations = pcg(applyStorage, pre, bi, xi, tol, maxIt, warm);
+      }
+      a.toOriginal(xi, x);
+    } else if (options.preconditioner == Preconditioner::IncompleteCholesky) {
       Eigen::SparseMatrix<double> s = a.toSparse();
       Eigen::IncompleteCholesky<double> ic(s);
       auto applyP = [&ic](const Eigen::VectorXd& r, Eigen::VectorXd& z) { z = ic.solve(r); };
-      result.iterations = pcg(applyA, applyP, b, x, tol, maxIt);
+      result.iterations = pcg(applyA, applyP, b, x, tol, maxIt, warm);
     } else if (options.preconditioner == Preconditioner::None) {
-      result.iterations = pcg(applyA, [](const Eigen::VectorXd& r, Eigen::VectorXd& z) { z = r; }, b, x, tol, maxIt);
+      auto identity = [](const Eigen::VectorXd& r, Eigen::VectorXd& z) { z = r; };
+      result.iterations = pcg(applyA, identity, b, x, tol, maxIt, warm);
     } else {
       BlockPreconditioner<double> pre(a, options.preconditioner == Preconditioner::BlockJacobi);
-      result.iterations = pcg(applyA, pre, b, x, tol, maxIt);
+      result.iterations = pcg(applyA, pre, b, x, tol, maxIt, warm);
     }
   }
   if (!x.allFinite()) return result;
@@ -108,6 +323,28 @@ LinearSolveResult solveLinear(const BlockMatrix& a, const Eigen::VectorXd& b, Ei
   result.relativeResidual = bNorm > 0.0 ? (a * x - b).norm() / bNorm : 0.0;
   result.ok = true;
   return result;
+}
+
+}  // namespace
+
+LinearSolveResult solveLinear(const BlockMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                              const LinearSolveOptions& options) {
+  const bool warm = options.warmStart && x.size() == b.size() && x.allFinite();
+  if (options.kind == LinearSolverKind::Cholmod) {
+    LinearSolveResult result;
+    Eigen::SparseMatrix<double> s = a.toSparse();
+    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> chol(s);
+    if (chol.info() != Eigen::Success) return result;
+    x = chol.solve(b);
+    if (!x.allFinite()) return result;
+    const double bNorm = b.norm();
+    result.relativeResidual = bNorm > 0.0 ? (a * x - b).norm() / bNorm : 0.0;
+    result.ok = true;
+    return result;
+  }
+  if (!options.fusedKernels || options.preconditioner == Preconditioner::IncompleteCholesky)
+    return plainSolve(a, b, x, options, warm);
+  return options.mixedPrecision ? fusedSolve<float>(a, b, x, options, warm) : fusedSolve<double>(a, b, x, options, warm);
 }
 
 }  // namespace drape::newton

@@ -70,7 +70,7 @@ NewtonSolver::NewtonSolver(ClothModel model, NewtonSettings settings, std::vecto
 
   std::vector<std::pair<int, int>> couplings;
   for (const auto& e : m_energies) e->addCouplings(couplings);
-  m_matrix.build(n, couplings);
+  m_matrix.build(n, couplings, m_settings.reorderDofs);
   m_h = m_settings.relaxation ? m_settings.hMax / m_settings.relaxationStepDivisor : m_settings.hMax;
 }
 
@@ -154,6 +154,12 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
     for (int i = 0; i < m_mass.size(); ++i) m_matrix.diagonalBlock(i).diagonal().array() += m_mass(i) * invH2;
     report.hessianSeconds += secondsSince(t0);
     t0 = Clock::now();
+    // PCG initial guess (used when linear.warmStart): the first Newton system of a step is close to the last
+    // step's velocity change (scaled to this h); later iterations solve for corrections and start from 0.
+    if (it == 0 && m_lastDv.size() == v.size() && m_lastDvH > 0.0)
+      dv = (h / m_lastDvH) * m_lastDv;
+    else
+      dv.resize(0);
     LinearSolveResult ls = solveLinear(m_matrix, b * invH2, dv, m_settings.linear);
     report.linearSolveSeconds += secondsSince(t0);
     ++report.newtonIterations;
@@ -221,6 +227,8 @@ NewtonStepReport NewtonSolver::step() {
     m_h *= s.omega;
   }
   m_x = x;
+  m_lastDv = v - m_v;
+  m_lastDvH = m_h;
   m_v = relaxing ? Eigen::VectorXd::Zero(v.size()) : v;  // relaxation zeroes velocities after every step (5.2)
   report.h = m_h;
   m_time += m_h;

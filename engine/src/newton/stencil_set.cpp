@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <vector>
 
 namespace drape::newton {
 namespace {
@@ -67,6 +68,19 @@ void StencilSet<N>::prepare(const BlockMatrix& h) const {
       }
   }
   m_patternId = h.patternId();
+  // Locality (6.4): on a reordered (RCM) matrix, visit the stencils of a colour, and the serial order, by their
+  // first storage row, so that consecutive stencils write neighbouring blocks; otherwise in index order.
+  std::vector<int> key(m_stencils.size());
+  for (int s = 0; s < size(); ++s) {
+    key[s] = s;
+    if (h.reordered()) {
+      key[s] = h.internalIndex(m_stencils[s][0]);
+      for (int v : m_stencils[s]) key[s] = std::min(key[s], h.internalIndex(v));
+    }
+  }
+  auto byKey = [&key](int a, int b) { return key[a] < key[b] || (key[a] == key[b] && a < b); };
+  std::sort(m_serialOrder.begin(), m_serialOrder.end(), byKey);
+  for (auto& ids : m_colours) std::sort(ids.begin(), ids.end(), byKey);
 }
 
 template <int N>

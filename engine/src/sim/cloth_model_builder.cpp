@@ -73,6 +73,12 @@ newton::NewtonSettings newtonSettingsFrom(const Settings& s) {
   n.linear.tolerance = s.number("solver.cg.tolerance");
   n.linear.maxIterations = s.integer("solver.cg.max_iterations");
   n.linear.mixedPrecision = s.flag("solver.cg.mixed_precision");
+  n.linear.warmStart = s.flag("solver.cg.warm_start");
+  n.linear.fusedKernels = s.flag("solver.cg.fused_kernels");
+  n.reorderDofs = s.flag("solver.newton.reorder_dofs");
+  n.closedFormBending = s.flag("solver.newton.closed_form_bending");
+  n.cachedBlockMap = s.flag("solver.newton.block_map");
+  n.parallelAssembly = s.flag("solver.newton.parallel_assembly");
   const std::string& pre = s.text("solver.cg.preconditioner");
   if (pre == "cholmod_direct") {
     n.linear.kind = newton::LinearSolverKind::Cholmod;

@@ -1,6 +1,8 @@
 // Symmetric sparse matrix of 3x3 blocks for the Newton drape solver (newton-drape-pizana section 6.1):
 // a static-topology part whose block pattern is built once (CSR of 3x3 blocks, both triangles stored) and a
 // small dynamic part for contact blocks that change every step. The product is the sum of both parts.
+// Optionally the block rows are stored in a Reverse Cuthill-McKee order (section 6.4): callers keep using vertex
+// indices everywhere; only the storage (and the *Internal kernels of the linear solver) see the permutation.
 #pragma once
 
 #include <Eigen/Core>
@@ -18,10 +20,11 @@ class BlockMatrix {
   BlockMatrix() = default;
   // Builds the static pattern: every diagonal block plus (i, j) and (j, i) for each listed vertex pair.
   // Pairs may repeat and come in either order; pairs with i == j are ignored (the diagonal is always there).
-  BlockMatrix(int numBlocks, const std::vector<std::pair<int, int>>& couplings);
+  BlockMatrix(int numBlocks, const std::vector<std::pair<int, int>>& couplings, bool reorder = false);
 
-  // Rebuilds the static pattern (values zero, dynamic part empty).
-  void build(int numBlocks, const std::vector<std::pair<int, int>>& couplings);
+  // Rebuilds the static pattern (values zero, dynamic part empty). reorder: store block rows in the RCM order of
+  // the coupling graph (dof_ordering.h) instead of vertex order.
+  void build(int numBlocks, const std::vector<std::pair<int, int>>& couplings, bool reorder = false);
 
   // Number of 3x3 block rows (= |V|) and scalar rows (= 3|V|).
   int numBlocks() const { return m_numBlocks; }
@@ -47,8 +50,8 @@ class BlockMatrix {
   const Eigen::Matrix3d& blockAt(int k) const { return m_blocks[k]; }
 
   // Diagonal block H_ii (static part only; the dynamic part is not included).
-  Eigen::Matrix3d& diagonalBlock(int i) { return m_blocks[m_diag[i]]; }
-  const Eigen::Matrix3d& diagonalBlock(int i) const { return m_blocks[m_diag[i]]; }
+  Eigen::Matrix3d& diagonalBlock(int i) { return m_blocks[m_diag[internalIndex(i)]]; }
+  const Eigen::Matrix3d& diagonalBlock(int i) const { return m_blocks[m_diag[internalIndex(i)]]; }
   // Diagonal block including the dynamic part's contributions to (i, i) (for preconditioners).
   Eigen::Matrix3d fullDiagonalBlock(int i) const;
 
@@ -59,8 +62,26 @@ class BlockMatrix {
   // The whole matrix (static + dynamic) as an Eigen sparse matrix, 3|V| x 3|V|, for tests and direct solves.
   Eigen::SparseMatrix<double> toSparse() const;
 
-  // CSR access to the static pattern: block row i spans [rowStart(i), rowStart(i+1)), columns in colIndex.
+  // CSR access to the static pattern in storage numbering (see internalIndex).
   int rowStart(int i) const { return m_rowStart[i]; }
+  // Storage ("internal") numbering of the block rows: internalIndex(vertex) is the storage row of a vertex and
+  // originalIndex(row) the vertex stored there; both the identity unless built with reorder.
+  bool reordered() const { return !m_position.empty(); }
+  int internalIndex(int i) const { return m_position.empty() ? i : m_position[i]; }
+  int originalIndex(int r) const { return m_order.empty() ? r : m_order[r]; }
+  // Flat vector (3|V|) from vertex order to storage order and back; out is resized.
+  template <typename Vec>
+  void toInternal(const Vec& x, Vec& out) const;
+  template <typename Vec>
+  void toOriginal(const Vec& x, Vec& out) const;
+  // Static blocks in storage order: row r (storage numbering) spans [rowStart(r), rowStart(r+1)) of blocks(),
+  // with storage column colIndex(k).
+  const std::vector<Eigen::Matrix3d>& blocks() const { return m_blocks; }
+  const int* rowStarts() const { return m_rowStart.data(); }
+  const int* colIndices() const { return m_cols.data(); }
+  // Largest |row - column| over the stored blocks (block bandwidth of the storage numbering).
+  int bandwidth() const;
+
   // Identifier of the current static pattern, unique per build() in the process: a cached stencil -> block map
   // made for one pattern is valid exactly while patternId() is unchanged.
   long patternId() const { return m_patternId; }
@@ -79,10 +100,32 @@ class BlockMatrix {
   long m_patternId = -1;
   std::vector<int> m_rowStart;         // numBlocks + 1
   std::vector<int> m_cols;             // sorted per row
-  std::vector<int> m_diag;             // index of (i, i) per row
+  std::vector<int> m_diag;             // index of (r, r) per storage row
+  std::vector<int> m_order;            // storage row -> vertex (empty: identity)
+  std::vector<int> m_position;         // vertex -> storage row (empty: identity)
   std::vector<Eigen::Matrix3d> m_blocks;
   std::vector<DynamicEntry> m_dynamic;
   std::mutex m_dynamicMutex;
 };
+
+template <typename Vec>
+void BlockMatrix::toInternal(const Vec& x, Vec& out) const {
+  out.resize(x.size());
+  if (!reordered()) {
+    out = x;
+    return;
+  }
+  for (int r = 0; r < m_numBlocks; ++r) out.template segment<3>(3 * r) = x.template segment<3>(3 * m_order[r]);
+}
+
+template <typename Vec>
+void BlockMatrix::toOriginal(const Vec& x, Vec& out) const {
+  out.resize(x.size());
+  if (!reordered()) {
+    out = x;
+    return;
+  }
+  for (int r = 0; r < m_numBlocks; ++r) out.template segment<3>(3 * m_order[r]) = x.template segment<3>(3 * r);
+}
 
 }  // namespace drape::newton

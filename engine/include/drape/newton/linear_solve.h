@@ -15,6 +15,14 @@ struct LinearSolveOptions {
   double tolerance = 1e-2;   // relative residual |Ax - b| / |b| (tau_cg)
   int maxIterations = 500;
   bool mixedPrecision = false;  // PCG in float (matrix, vectors, preconditioner), derivatives stay double
+  // Start PCG from the incoming x (when it has b's size and is finite) instead of 0: the solver hands in the
+  // previous step's velocity change. The stopping test stays |Ax - b| <= tolerance |b|.
+  bool warmStart = true;
+  // Fused block PCG in the matrix's storage order (RCM when the matrix is reordered): one pass over the block
+  // rows per SpMV (with p.Ap), one fused pass for x, r, z = P r and both dot products, TBB over row chunks with
+  // deterministic reductions; float matrix copy for mixedPrecision. false = the plain Eigen-vector PCG.
+  // Preconditioners None, Diagonal and BlockJacobi only (IncompleteCholesky always takes the plain path).
+  bool fusedKernels = true;
 };
 
 struct LinearSolveResult {
@@ -23,7 +31,8 @@ struct LinearSolveResult {
   bool ok = false;                // false on a failed factorisation or non-finite result
 };
 
-// Solves A x = b for the SPD block matrix A (static + dynamic parts). x is overwritten (size of b).
+// Solves A x = b for the SPD block matrix A (static + dynamic parts). x is overwritten (size of b); with
+// options.warmStart its incoming value is the initial guess.
 LinearSolveResult solveLinear(const BlockMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                               const LinearSolveOptions& options);
 

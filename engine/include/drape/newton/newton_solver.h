@@ -44,6 +44,9 @@ struct NewtonSettings {
   bool cachedBlockMap = true;
   // Stencil colouring (6.5): force and Hessian assembly in parallel (TBB) colour by colour, no atomics.
   bool parallelAssembly = true;
+  // Reverse Cuthill-McKee renumbering of the matrix block rows (6.4): locality of SpMV and Hessian writes.
+  bool reorderDofs = true;
+  // (Warm-started PCG, fused parallel PCG kernels and mixed precision are switches of `linear`.)
 };
 
 class PinSprings;
@@ -120,6 +123,9 @@ class NewtonSolver {
   double m_h = 0.0;
   int m_goodSteps = 0;
   double m_restSince = -1.0;
+  // Velocity change of the last accepted step (3|V|, m/s) and its h (s): the PCG initial guess of the next step.
+  Eigen::VectorXd m_lastDv;
+  double m_lastDvH = 0.0;
   std::atomic<bool> m_cancel{false};
 };
 

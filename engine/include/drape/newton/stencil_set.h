@@ -27,7 +27,8 @@ class StencilSet {
   int size() const { return static_cast<int>(m_stencils.size()); }
   const Stencil& operator[](int s) const { return m_stencils[s]; }
   int numColours() const { return static_cast<int>(m_colours.size()); }
-  // Stencil indices of colour c, ascending; no two share a vertex.
+  // Stencil indices of colour c (ascending, or in storage-row order after prepare on an RCM matrix); no two share
+  // a vertex.
   const std::vector<int>& colour(int c) const { return m_colours[c]; }
 
   // Calls body(indices, count) on chunks of stencil indices covering every stencil once. Serial: one chunk,
@@ -35,8 +36,9 @@ class StencilSet {
   // threads, so bodies that write only to their stencil's vertices never race.
   void forEach(bool parallel, const std::function<void(const int* indices, int count)>& body) const;
 
-  // Makes the slot map valid for h's pattern (rebuilt only when h.patternId() changed). Not thread-safe: call
-  // before a parallel forEach that uses addHessian with cached = true.
+  // Makes the slot map valid for h's pattern (rebuilt only when h.patternId() changed) and, when h is reordered
+  // (RCM), sorts each colour and the serial order by the stencils' first storage row (locality of the writes).
+  // Not thread-safe: call before a parallel forEach that uses addHessian with cached = true.
   void prepare(const BlockMatrix& h) const;
 
   // Adds the upper block triangle of a stencil Hessian he (3N x 3N, ordered as the stencil's vertices) to h:
@@ -50,8 +52,8 @@ class StencilSet {
 
  private:
   std::vector<Stencil> m_stencils;
-  std::vector<int> m_serialOrder;              // 0 .. size-1
-  std::vector<std::vector<int>> m_colours;
+  mutable std::vector<int> m_serialOrder;           // 0 .. size-1 (by storage row after prepare on an RCM matrix)
+  mutable std::vector<std::vector<int>> m_colours;  // ascending (by storage row after prepare on an RCM matrix)
   mutable std::vector<std::array<int, 2 * kPairs>> m_slots;  // per stencil and pair: (a, b) and (b, a) slots
   mutable long m_patternId = -1;
 };

@@ -35,6 +35,10 @@ struct StepReport {
   int contacts = 0;            // garment vertices in contact with a collider
   double maxStrain = 0.0;      // largest triangle stretch (0.05 = 5%)
   double wallTime = 0.0;       // seconds spent in this step
+  // Drape stage: wall seconds of this step in Hessian assembly, gradient (residual) evaluations, linear solves.
+  double assemblyTime = 0.0;
+  double gradientTime = 0.0;
+  double linearSolveTime = 0.0;
   bool atRest = false;         // early stop reached
 };
 
