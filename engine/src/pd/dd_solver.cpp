@@ -1,16 +1,16 @@
 #include "drape/pd/dd_solver.h"
 
-#include <Eigen/CholmodSupport>
 #include <Eigen/Dense>
 #include <algorithm>
 #include <atomic>
 #include <tbb/parallel_for.h>
 
+#include "drape/pd/sparse_cholesky.h"
+
 namespace drape::pd {
 namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
-using Cholmod = Eigen::CholmodDecomposition<SpMat, Eigen::Lower>;
 
 struct Domain {
   std::vector<int> rGlobal;       // local R -> global DOF
@@ -21,7 +21,9 @@ struct Domain {
   std::vector<int> dupDual;       //             index into lambda
   std::vector<double> dupSign;    //             +1 owner (lower domain), -1 other
   SpMat kRC, kCC;
-  std::unique_ptr<Cholmod> llt;
+  SparseCholesky llt;             // K_RR^j
+  // Scratch of solve(), sized once: b_R^j and then x_R^j (N_R^j x 3 row-major), the solver's work array.
+  mutable std::vector<double> rhs, work;
 };
 
 }  // namespace
@@ -31,10 +33,13 @@ struct DomainDecomposedSolver::Impl {
   std::vector<DofClass> classes;
   std::vector<int> cornerDof;     // corner index -> DOF
   int nDual = 0;
-  Cholmod gRR;
+  SparseCholesky gRR;
   Eigen::MatrixXd gRC;            // nDual x nC
   Eigen::MatrixXd w;              // G_RR^-1 G_RC
   Eigen::LLT<Eigen::MatrixXd> gCCStar;
+  // Scratch of solve(): dual right-hand side then lambda (nDual x 3 row-major), its work array; x_C (nC x 3).
+  mutable std::vector<double> dual, dualWork;
+  mutable Eigen::MatrixX3d bCStar, xC;
 };
 
 DomainDecomposedSolver::DomainDecomposedSolver(const std::vector<DomainMatrix>& input, int dofCount,
@@ -115,9 +120,9 @@ DomainDecomposedSolver::DomainDecomposedSolver(const std::vector<DomainMatrix>& 
       gCCParts[j] = Eigen::MatrixXd(dom.kCC);
       return;
     }
-    dom.llt = std::make_unique<Cholmod>();
-    dom.llt->compute(kRR);
-    if (dom.llt->info() != Eigen::Success) {
+    dom.rhs.assign(3 * static_cast<size_t>(nR), 0.0);
+    dom.work.assign(3 * static_cast<size_t>(nR), 0.0);
+    if (!dom.llt.factor(kRR)) {
       allOk = false;
       return;
     }
@@ -125,14 +130,14 @@ DomainDecomposedSolver::DomainDecomposedSolver(const std::vector<DomainMatrix>& 
     if (nDj > 0) {
       Eigen::MatrixXd e = Eigen::MatrixXd::Zero(nR, nDj);
       for (int k = 0; k < nDj; ++k) e(dom.dupLocal[k], k) = dom.dupSign[k];
-      const Eigen::MatrixXd y = dom.llt->solve(e);
+      const Eigen::MatrixXd y = dom.llt.solve(e);
       for (int a = 0; a < nDj; ++a)
         for (int b = 0; b < nDj; ++b)
           gRRParts[j].emplace_back(dom.dupDual[a], dom.dupDual[b], dom.dupSign[a] * y(dom.dupLocal[a], b));
     }
     if (nCj > 0) {
       const Eigen::MatrixXd kRCd(dom.kRC);
-      const Eigen::MatrixXd yc = dom.llt->solve(kRCd);
+      const Eigen::MatrixXd yc = dom.llt.solve(kRCd);
       gCCParts[j] = Eigen::MatrixXd(dom.kCC) - kRCd.transpose() * yc;
       gRCParts[j].resize(nDj, nCj);
       for (int a = 0; a < nDj; ++a) gRCParts[j].row(a) = dom.dupSign[a] * yc.row(dom.dupLocal[a]);
@@ -158,11 +163,12 @@ DomainDecomposedSolver::DomainDecomposedSolver(const std::vector<DomainMatrix>& 
   if (im.nDual > 0) {
     SpMat gRR(im.nDual, im.nDual);
     gRR.setFromTriplets(gRRTrip.begin(), gRRTrip.end());
-    im.gRR.compute(gRR);
-    if (im.gRR.info() != Eigen::Success) {
+    if (!im.gRR.factor(gRR)) {
       m_ok = false;
       return;
     }
+    im.dual.assign(3 * static_cast<size_t>(im.nDual), 0.0);
+    im.dualWork.assign(3 * static_cast<size_t>(im.nDual), 0.0);
     if (nC > 0) {
       im.w = im.gRR.solve(im.gRC);
       gCC += im.gRC.transpose() * im.w;
@@ -177,60 +183,79 @@ DomainDecomposedSolver::DomainDecomposedSolver(const std::vector<DomainMatrix>& 
 DomainDecomposedSolver::~DomainDecomposedSolver() = default;
 
 void DomainDecomposedSolver::solve(const Eigen::MatrixX3d& b, Eigen::MatrixX3d& x) const {
-  x.setZero(m_size, 3);
-  if (!m_ok) return;
+  if (x.rows() != m_size) x.resize(m_size, 3);
+  if (!m_ok) {
+    x.setZero();
+    return;
+  }
   const Impl& im = *m_impl;
   const int nd = static_cast<int>(im.domains.size());
   const int nC = static_cast<int>(im.cornerDof.size());
 
-  // Step 1: y^j = K_RR^-1 b_R^j in parallel.
-  std::vector<Eigen::MatrixX3d> bR(nd), y(nd);
+  // Step 1: y^j = K_RR^-1 b_R^j in parallel (y^j left in dom.rhs).
   tbb::parallel_for(0, nd, [&](int j) {
     const Domain& dom = im.domains[j];
     const int nR = static_cast<int>(dom.rGlobal.size());
     if (nR == 0) return;
-    bR[j].setZero(nR, 3);
-    for (int r = 0; r < nR; ++r)
-      if (dom.rTakesB[r]) bR[j].row(r) = b.row(dom.rGlobal[r]);
-    y[j] = dom.llt->solve(bR[j]);
+    double* r = dom.rhs.data();
+    for (int k = 0; k < nR; ++k) {
+      const bool takes = dom.rTakesB[k];
+      const int d = dom.rGlobal[k];
+      for (int c = 0; c < 3; ++c) r[3 * k + c] = takes ? b(d, c) : 0.0;
+    }
+    dom.llt.solveInPlace(r, dom.work.data());
   });
-  // b_R^* and b_C^*.
-  Eigen::MatrixX3d bRStar = Eigen::MatrixX3d::Zero(im.nDual, 3);
-  Eigen::MatrixX3d bCStar(nC, 3);
-  for (int c = 0; c < nC; ++c) bCStar.row(c) = b.row(im.cornerDof[c]);
+  // b_R^* (into im.dual) and b_C^*.
+  double* dual = im.dual.data();
+  std::fill(im.dual.begin(), im.dual.end(), 0.0);
+  im.bCStar.resize(nC, 3);
+  for (int c = 0; c < nC; ++c) im.bCStar.row(c) = b.row(im.cornerDof[c]);
   for (int j = 0; j < nd; ++j) {
     const Domain& dom = im.domains[j];
     if (dom.rGlobal.empty()) continue;
-    for (size_t k = 0; k < dom.dupLocal.size(); ++k) bRStar.row(dom.dupDual[k]) += dom.dupSign[k] * y[j].row(dom.dupLocal[k]);
-    if (!dom.cCorner.empty()) {
-      const Eigen::MatrixX3d t = dom.kRC.transpose() * y[j];
-      for (size_t c = 0; c < dom.cCorner.size(); ++c) bCStar.row(dom.cCorner[c]) -= t.row(static_cast<int>(c));
+    const double* y = dom.rhs.data();
+    for (size_t k = 0; k < dom.dupLocal.size(); ++k)
+      for (int c = 0; c < 3; ++c) dual[3 * dom.dupDual[k] + c] += dom.dupSign[k] * y[3 * dom.dupLocal[k] + c];
+    // b_C^* -= K_RC^T y over the domain's corners.
+    for (int col = 0; col < dom.kRC.outerSize(); ++col)
+      for (SpMat::InnerIterator it(dom.kRC, col); it; ++it)
+        for (int c = 0; c < 3; ++c) im.bCStar(dom.cCorner[col], c) -= it.value() * y[3 * it.row() + c];
+  }
+  // Steps 2-3: z = G_RR^-1 b_R^*, x_C (eq. 10), then lambda = z - G_RR^-1 G_RC x_C (eq. 9), left in im.dual.
+  if (im.nDual > 0) im.gRR.solveInPlace(dual, im.dualWork.data());
+  if (nC > 0) {
+    const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> z(dual, im.nDual, 3);
+    Eigen::MatrixX3d rhs = im.bCStar;
+    if (im.nDual > 0) rhs.noalias() += im.gRC.transpose() * z;
+    im.xC = im.gCCStar.solve(rhs);
+    for (int c = 0; c < nC; ++c) x.row(im.cornerDof[c]) = im.xC.row(c);
+    if (im.nDual > 0) {
+      Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> lambda(dual, im.nDual, 3);
+      lambda.noalias() -= im.w * im.xC;
     }
   }
-  // Steps 2-3: x_C (eq. 10), then lambda (eq. 9).
-  Eigen::MatrixX3d z, xC, lambda;
-  if (im.nDual > 0) z = im.gRR.solve(bRStar);
-  if (nC > 0) {
-    Eigen::MatrixX3d rhs = bCStar;
-    if (im.nDual > 0) rhs += im.gRC.transpose() * z;
-    xC = im.gCCStar.solve(rhs);
-    for (int c = 0; c < nC; ++c) x.row(im.cornerDof[c]) = xC.row(c);
-  }
-  if (im.nDual > 0) lambda = nC > 0 ? Eigen::MatrixX3d(z - im.w * xC) : z;
-  // Step 4: x_R^j (eq. 7) in parallel.
+  // Step 4: x_R^j = K_RR^-1 (b_R^j - K_RC^j x_C^j - S_D^jT lambda) (eq. 7) in parallel. dom.rhs still holds
+  // K_RR^-1 b_R^j, so only the interface correction is solved: x_R^j = y^j - K_RR^-1 (K_RC x_C + S_D^T lambda).
   tbb::parallel_for(0, nd, [&](int j) {
     const Domain& dom = im.domains[j];
-    if (dom.rGlobal.empty()) return;
-    Eigen::MatrixX3d r = bR[j];
-    if (!dom.cCorner.empty()) {
-      Eigen::MatrixX3d xCj(dom.cCorner.size(), 3);
-      for (size_t c = 0; c < dom.cCorner.size(); ++c) xCj.row(static_cast<int>(c)) = xC.row(dom.cCorner[c]);
-      r -= dom.kRC * xCj;
-    }
-    for (size_t k = 0; k < dom.dupLocal.size(); ++k) r.row(dom.dupLocal[k]) -= dom.dupSign[k] * lambda.row(dom.dupDual[k]);
-    const Eigen::MatrixX3d xR = dom.llt->solve(r);
-    for (size_t l = 0; l < dom.rGlobal.size(); ++l)
-      if (dom.rWrites[l]) x.row(dom.rGlobal[l]) = xR.row(static_cast<int>(l));
+    const int nR = static_cast<int>(dom.rGlobal.size());
+    if (nR == 0) return;
+    // y^j goes to x first; the correction right-hand side is then built in its place.
+    double* y = dom.rhs.data();
+    for (int k = 0; k < nR; ++k)
+      if (dom.rWrites[k])
+        for (int c = 0; c < 3; ++c) x(dom.rGlobal[k], c) = y[3 * k + c];
+    std::fill(dom.rhs.begin(), dom.rhs.end(), 0.0);
+    double* r = dom.rhs.data();
+    for (int col = 0; col < dom.kRC.outerSize(); ++col)
+      for (SpMat::InnerIterator it(dom.kRC, col); it; ++it)
+        for (int c = 0; c < 3; ++c) r[3 * it.row() + c] += it.value() * im.xC(dom.cCorner[col], c);
+    for (size_t k = 0; k < dom.dupLocal.size(); ++k)
+      for (int c = 0; c < 3; ++c) r[3 * dom.dupLocal[k] + c] += dom.dupSign[k] * dual[3 * dom.dupDual[k] + c];
+    dom.llt.solveInPlace(r, dom.work.data());
+    for (int k = 0; k < nR; ++k)
+      if (dom.rWrites[k])
+        for (int c = 0; c < 3; ++c) x(dom.rGlobal[k], c) -= r[3 * k + c];
   });
 }
 

@@ -121,13 +121,18 @@ void LocalStep::gaussSeidel(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& b
     const Domain& dom = m_domains[j];
     const int nl = static_cast<int>(dom.vertices.size());
     if (dom.triangles.empty()) return;
-    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> xl(nl, 3), bl(nl, 3);
+    thread_local Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> xl, bl;
+    xl.resize(nl, 3);
+    bl.resize(nl, 3);
     for (int l = 0; l < nl; ++l) {
       xl.row(l) = x.row(dom.vertices[l]);
       if (dom.freeDof[l] >= 0) bl.row(l) = b.row(dom.freeDof[l]);
     }
     const std::vector<int>& order = dom.orders[iteration % m_orders];
-    for (int i : order) {
+    const int count = static_cast<int>(order.size());
+    for (int pass = 0; pass < 2 * count; ++pass) {
+      // Symmetric Gauss-Seidel: forward along the DFS order (away from the pins), then back along it.
+      const int i = order[pass < count ? pass : 2 * count - 1 - pass];
       const int t = dom.triangles[i];
       const StrainConstraint& sc = strains[t];
       const auto& lv = dom.local[i];

@@ -1,0 +1,130 @@
+#include "drape/pd/sparse_cholesky.h"
+
+#include <algorithm>
+#include <cholmod.h>
+
+namespace drape::pd {
+
+bool SparseCholesky::factor(const Eigen::SparseMatrix<double>& input) {
+  m_ok = false;
+  m_n = static_cast<int>(input.rows());
+  if (m_n == 0) {
+    m_colStart.assign(1, 0);
+    m_ok = true;
+    return true;
+  }
+  Eigen::SparseMatrix<double> a = input;  // compressed copy, int indices as CHOLMOD_INT expects
+  a.makeCompressed();
+  cholmod_sparse view{};
+  view.nrow = view.ncol = static_cast<size_t>(m_n);
+  view.nzmax = static_cast<size_t>(a.nonZeros());
+  view.p = a.outerIndexPtr();
+  view.i = a.innerIndexPtr();
+  view.x = a.valuePtr();
+  view.stype = -1;  // symmetric, lower triangle used
+  view.itype = CHOLMOD_INT;
+  view.xtype = CHOLMOD_REAL;
+  view.dtype = CHOLMOD_DOUBLE;
+  view.sorted = 1;
+  view.packed = 1;
+
+  cholmod_common common;
+  cholmod_start(&common);
+  common.supernodal = CHOLMOD_SIMPLICIAL;
+  common.final_ll = 1;  // L L^T rather than L D L^T
+  common.print = 0;
+  cholmod_factor* l = cholmod_analyze(&view, &common);
+  bool good = l != nullptr;
+  if (good) good = cholmod_factorize(&view, l, &common) != 0 && l->minor == l->n && l->is_ll && !l->is_super;
+  if (good) {
+    const int* p = static_cast<const int*>(l->p);
+    const int* i = static_cast<const int*>(l->i);
+    const int* nz = static_cast<const int*>(l->nz);
+    const double* x = static_cast<const double*>(l->x);
+    const int* perm = static_cast<const int*>(l->Perm);
+    m_perm.assign(perm, perm + m_n);
+    m_colStart.assign(m_n + 1, 0);
+    for (int j = 0; j < m_n; ++j) m_colStart[j + 1] = m_colStart[j] + nz[j];
+    m_row.resize(m_colStart[m_n]);
+    m_value.resize(m_colStart[m_n]);
+    m_invDiagonal.resize(m_n);
+    for (int j = 0; j < m_n; ++j) {
+      std::copy(i + p[j], i + p[j] + nz[j], m_row.begin() + m_colStart[j]);
+      std::copy(x + p[j], x + p[j] + nz[j], m_value.begin() + m_colStart[j]);
+      // CHOLMOD keeps the diagonal first in each simplicial column.
+      good = good && nz[j] > 0 && i[p[j]] == j && x[p[j]] > 0.0;
+      if (good) m_invDiagonal[j] = 1.0 / x[p[j]];
+    }
+  }
+  if (l) cholmod_free_factor(&l, &common);
+  cholmod_finish(&common);
+  m_ok = good;
+  return m_ok;
+}
+
+void SparseCholesky::solveInPlace(double* x, double* w) const {
+  const int n = m_n;
+  for (int k = 0; k < n; ++k) {
+    const double* src = x + 3 * m_perm[k];
+    w[3 * k] = src[0];
+    w[3 * k + 1] = src[1];
+    w[3 * k + 2] = src[2];
+  }
+  const int* row = m_row.data();
+  const double* val = m_value.data();
+  // Forward: L y = P b, column by column.
+  for (int j = 0; j < n; ++j) {
+    double* wj = w + 3 * j;
+    const double d = m_invDiagonal[j];
+    const double a = wj[0] * d, b = wj[1] * d, c = wj[2] * d;
+    wj[0] = a;
+    wj[1] = b;
+    wj[2] = c;
+    for (int q = m_colStart[j] + 1; q < m_colStart[j + 1]; ++q) {
+      double* wi = w + 3 * row[q];
+      const double v = val[q];
+      wi[0] -= v * a;
+      wi[1] -= v * b;
+      wi[2] -= v * c;
+    }
+  }
+  // Backward: L^T z = y, a dot product per column.
+  for (int j = n - 1; j >= 0; --j) {
+    double a = w[3 * j], b = w[3 * j + 1], c = w[3 * j + 2];
+    for (int q = m_colStart[j] + 1; q < m_colStart[j + 1]; ++q) {
+      const double* wi = w + 3 * row[q];
+      const double v = val[q];
+      a -= v * wi[0];
+      b -= v * wi[1];
+      c -= v * wi[2];
+    }
+    const double d = m_invDiagonal[j];
+    w[3 * j] = a * d;
+    w[3 * j + 1] = b * d;
+    w[3 * j + 2] = c * d;
+  }
+  for (int k = 0; k < n; ++k) {
+    double* dst = x + 3 * m_perm[k];
+    dst[0] = w[3 * k];
+    dst[1] = w[3 * k + 1];
+    dst[2] = w[3 * k + 2];
+  }
+}
+
+Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& b) const {
+  const int n = m_n, k = static_cast<int>(b.cols());
+  Eigen::MatrixXd out(n, k);
+  std::vector<double> x(3 * static_cast<size_t>(n)), w(3 * static_cast<size_t>(n));
+  for (int c0 = 0; c0 < k; c0 += 3) {
+    const int m = std::min(3, k - c0);
+    std::fill(x.begin(), x.end(), 0.0);
+    for (int i = 0; i < n; ++i)
+      for (int c = 0; c < m; ++c) x[3 * i + c] = b(i, c0 + c);
+    solveInPlace(x.data(), w.data());
+    for (int i = 0; i < n; ++i)
+      for (int c = 0; c < m; ++c) out(i, c0 + c) = x[3 * i + c];
+  }
+  return out;
+}
+
+}  // namespace drape::pd
