@@ -183,6 +183,20 @@ TEST(Simulation, ClearCancelLetsTheNextStepRun) {
   EXPECT_GT(sim.time(), 0.0);
 }
 
+TEST(Simulation, TimeLimitAlsoEndsThePreviewOfTheFullPipeline) {
+  Scene scene = tablecloth("full");
+  scene.settings.set("solver.max_sim_time", "0.05", "test");  // below solver.preview.max_time (1 s)
+  Simulation sim(std::move(scene));
+  int steps = 0;
+  while (!sim.finished() && steps < 1000) {
+    sim.step();
+    ++steps;
+  }
+  EXPECT_EQ(sim.stage(), "preview");
+  EXPECT_GE(sim.time(), 0.05 - 1e-9);
+  EXPECT_LT(sim.time(), 0.05 + 0.02);  // stopped within a preview step of the limit
+}
+
 TEST(Simulation, MovingPinsFromTheSceneFile) {
   SceneRequest request;
   request.input = assetsDir() / ".." / "bench" / "scenes" / "twisting_square_coarse_denim.json";

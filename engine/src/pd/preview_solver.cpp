@@ -9,6 +9,8 @@
 #include <tbb/task_arena.h>
 
 #include "drape/collision/avatar_collider.h"
+#include "drape/pd/avatar_collision.h"
+#include "drape/pd/cloth_collision.h"
 #include "drape/pd/contact_solve.h"
 #include "drape/pd/dd_solver.h"
 #include "drape/pd/domain_partition.h"
@@ -64,11 +66,20 @@ struct PreviewSolver::Impl {
   std::vector<int> pinSource;
   int dragDof = -1;  // free DOF of the grabbed vertex, -1 = none
   Eigen::Vector3d dragTarget = Eigen::Vector3d::Zero();
+  std::unique_ptr<AvatarContacts> avatar;  // null without a collider
+  std::unique_ptr<ClothContacts> cloth;    // null unless settings.selfCollision
+  ContactAccumulator accumulator;
 
   PreviewReport step();
   // Appends the grabbed vertex's constraint (replacing a contact on the same DOF).
   void addDrag(ContactSet& contacts) const;
-  void detectContacts(const Eigen::MatrixX3d& xFree, const std::vector<int>& candidates, ContactSet& out) const;
+  // Contact constraints of one L-G iteration: vertices at the collision-free xFree (|free| x 3), cloth triangles
+  // at the last iterate x.
+  ContactSet detectContacts(const Eigen::MatrixX3d& xFree, PreviewReport& rep);
+  // End of a step: projects x out of the cloth-cloth crossings and thickness violations left by the L-G
+  // iterations (ClothContacts::resolve). Vertices in contact with the avatar weigh 1 / kAvatarHold of their mass
+  // less in sharing a correction, so a layer lying on the body is not pushed into it.
+  void resolveClothContacts(const Eigen::MatrixX3d& start, PreviewReport& rep);
 };
 
 PreviewSolver::PreviewSolver(const newton::ClothModel& model, const PreviewSettings& settings,
@@ -102,6 +113,15 @@ PreviewSolver::PreviewSolver(const newton::ClothModel& model, const PreviewSetti
     im.local = std::make_unique<LocalStep>(*im.system, im.triangleDomain, im.domains, settings.traversalOrders,
                                            settings.seed);
   });
+  if (im.collider)
+    im.avatar = std::make_unique<AvatarContacts>(
+        im.collider, AvatarContactOptions{settings.contactThickness, settings.contactMargin, settings.contactWeight,
+                                          settings.friction, settings.ccd});
+  if (settings.selfCollision)
+    im.cloth = std::make_unique<ClothContacts>(
+        model.triangles, nv, model.stitches, im.system->dofOfVertex(),
+        ClothContactOptions{settings.contactThickness, settings.contactMargin, settings.selfContactWeight});
+  im.accumulator.reset(im.system->freeCount());
   toFlat(im.x, im.flatX);
   toFlat(im.v, im.flatV);
 }
@@ -114,31 +134,35 @@ PreviewReport PreviewSolver::step() {
   return report;
 }
 
-void PreviewSolver::Impl::detectContacts(const Eigen::MatrixX3d& xFree, const std::vector<int>& candidates,
-                                         ContactSet& out) const {
-  const double thickness = settings.contactThickness;
-  const int nc = static_cast<int>(candidates.size());
-  std::vector<char> active(nc, 0);
-  std::vector<Eigen::Vector3d> target(nc);
-  tbb::parallel_for(0, nc, [&](int i) {
+ContactSet PreviewSolver::Impl::detectContacts(const Eigen::MatrixX3d& xFree, PreviewReport& rep) {
+  accumulator.reset(system->freeCount());
+  rep.ccdContacts = rep.staticFriction = rep.selfContacts = 0;
+  if (avatar) {
+    const AvatarContactStats st = avatar->addConstraints(xFree, accumulator);
+    rep.ccdContacts = st.ccdContacts;
+    rep.staticFriction = st.staticFriction;
+  }
+  if (cloth) rep.selfContacts = cloth->addConstraints(xFree, x, accumulator).contacts;
+  return accumulator.merged();
+}
+
+void PreviewSolver::Impl::resolveClothContacts(const Eigen::MatrixX3d& start, PreviewReport& rep) {
+  constexpr double kAvatarHold = 50.0;
+  const auto& dof = system->dofOfVertex();
+  const Eigen::VectorXd& mass = system->masses();
+  std::vector<double> cache(dof.size(), -1.0);  // inverse masses, computed on first use
+  const auto inverseMass = [&](int vtx) {
+    double& w = cache[vtx];
+    if (w >= 0.0) return w;
+    w = dof[vtx] < 0 || !(mass[vtx] > 0.0) ? 0.0 : 1.0 / mass[vtx];
     collision::SurfacePoint sp;
-    const Eigen::Vector3d p = xFree.row(candidates[i]).transpose();
-    if (collider->closest(p, sp, thickness + settings.contactMargin) && sp.signedDistance < thickness) {
-      active[i] = 1;
-      target[i] = sp.closest + thickness * sp.normal;
-    }
-  });
-  out.dofs.clear();
-  out.weights.clear();
-  int count = 0;
-  for (int i = 0; i < nc; ++i) count += active[i];
-  out.targets.resize(count, 3);
-  for (int i = 0; i < nc; ++i)
-    if (active[i]) {
-      out.targets.row(static_cast<int>(out.dofs.size())) = target[i].transpose();
-      out.dofs.push_back(candidates[i]);
-      out.weights.push_back(settings.contactWeight);
-    }
+    if (w > 0.0 && collider && collider->closest(x.row(vtx).transpose(), sp, settings.contactThickness))
+      w /= kAvatarHold;
+    return w;
+  };
+  const ClothResolveStats st = cloth->resolve(start, x, inverseMass);
+  rep.selfResolved = st.violations;
+  rep.selfCrossed = st.remaining;
 }
 
 PreviewReport PreviewSolver::Impl::step() {
@@ -174,22 +198,14 @@ PreviewReport PreviewSolver::Impl::step() {
   const BoundingBox box = boundsOf(x);
   const double extent = std::max(box.size().maxCoeff(), 1e-9);
 
-  // Vertices near the avatar this step.
-  std::vector<int> candidates;
-  if (collider) {
+  // Broad phase of the step: vertices that may reach the avatar, cloth vertex-triangle pairs that may meet.
+  if (avatar || cloth) {
     const auto t0 = Clock::now();
-    const double reach = settings.contactThickness + settings.contactMargin;
-    std::vector<char> near(nf, 0);
-    tbb::parallel_for(0, nf, [&](int d) {
-      const int vtx = freeVertices[d];
-      const double travel = h * v.row(vtx).norm() + (h * h * sys.gravity()).norm();
-      collision::SurfacePoint sp;
-      near[d] = collider->closest(x.row(vtx).transpose(), sp, reach + 2.0 * travel);
-    });
-    for (int d = 0; d < nf; ++d)
-      if (near[d]) candidates.push_back(d);
+    if (avatar) avatar->beginStep(x, z, freeVertices);
+    if (cloth) cloth->beginStep(x, z);
     rep.collisionTime += seconds(t0, Clock::now());
   }
+  const bool watchContacts = (avatar && avatar->hasCandidates()) || (cloth && cloth->candidateCount() > 0);
 
   x = z;
   Eigen::MatrixX3d b;
@@ -218,13 +234,14 @@ PreviewReport PreviewSolver::Impl::step() {
     global->solve(b, xFree);
     auto t2 = Clock::now();
     rep.globalTime += seconds(t1, t2);
-    if (!candidates.empty() || dragDof >= 0) {
-      if (!candidates.empty()) detectContacts(xFree, candidates, contacts);
+    if (watchContacts || dragDof >= 0) {
+      if (watchContacts) contacts = detectContacts(xFree, rep);
       else contacts = ContactSet{};
       rep.contacts = contacts.size();
       addDrag(contacts);
-      const ContactSolveStats cs = solveWithContacts(sys.matrix(), *global, contacts, settings.contactSolve,
-                                                     settings.maxPcgIterations, settings.pcgTolerance, xFree);
+      const ContactSolveStats cs =
+          solveWithContacts(sys.matrix(), *global, contacts, settings.contactSolve, settings.maxPcgIterations,
+                            settings.pcgTolerance, xFree, settings.sdIterations);
       rep.sdIterations += cs.sdIterations;
       rep.pcgIterations += cs.pcgIterations;
       rep.collisionTime += seconds(t2, Clock::now());
@@ -245,6 +262,11 @@ PreviewReport PreviewSolver::Impl::step() {
       rep.status = PreviewStatus::Converged;
       break;
     }
+  }
+  if (cloth && (rep.status == PreviewStatus::Converged || rep.status == PreviewStatus::MaxIterations)) {
+    const auto t0 = Clock::now();
+    resolveClothContacts(xPrev, rep);
+    rep.collisionTime += seconds(t0, Clock::now());
   }
   if (rep.status == PreviewStatus::Converged || rep.status == PreviewStatus::MaxIterations) {
     v = (x - xPrev) * ((1.0 - settings.velocityDamping) / h);

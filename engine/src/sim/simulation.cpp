@@ -63,6 +63,13 @@ pd::PreviewSettings previewSettingsFrom(const Scene& scene) {
   p.contactSolve = s.text("solver.preview.contact_solve") == "pcg" ? pd::ContactSolveKind::Pcg
                                                                    : pd::ContactSolveKind::DualThenPcg;
   p.contactThickness = drape::contactThickness(scene);
+  p.sdIterations = s.integer("solver.preview.sd_iterations");
+  p.ccd = s.flag("solver.preview.ccd");
+  p.selfCollision = s.flag("contact.self_collision");
+  if (s.flag("contact.friction")) {  // as the drape: the largest coefficient of the scene's fabrics
+    p.friction = scene.fabric.friction;
+    for (const auto& [panel, fabric] : scene.panelFabrics) p.friction = std::max(p.friction, fabric.friction);
+  }
   return p;
 }
 
@@ -109,7 +116,8 @@ void Simulation::build(const ResumeState* from) {
     m_solver->previewOffset = from->time;
     m_solver->preview = std::make_unique<pd::PreviewSolver>(model, previewSettingsFrom(m_scene), m_solver->collider);
   } else if (from && from->stage == "drape") {
-    startDrape(from->previewPositions, from->previewPositions.rows() > 0 ? from->previewTime : 0.0);
+    m_resumed = from->previewPositions.rows() > 0;  // else the drape had started from the placed garment
+    startDrape(from->previewPositions, m_resumed ? from->previewTime : 0.0);
   } else if (runsPreview) {
     m_resumed = false;
     m_solver->preview =
@@ -167,6 +175,9 @@ std::vector<std::string> Simulation::terms() const {
   if (!m_solver->model.stitches.empty()) t.push_back("pd_stitches");
   if (!m_solver->model.pinned.empty()) t.push_back("pins");
   if (m_solver->collider) t.push_back("pd_avatar_contact");
+  const pd::PreviewSettings ps = previewSettingsFrom(m_scene);
+  if (m_solver->collider && ps.friction > 0.0) t.push_back("pd_friction");
+  if (ps.selfCollision) t.push_back("pd_self_contact");
   return t;
 }
 
@@ -196,9 +207,10 @@ void Simulation::clearCancel() {
 
 bool Simulation::finished() const {
   const bool previewOnly = m_scene.settings.text("solver.stage") == "preview";
-  if (m_solver->preview && !previewOnly) return false;  // the drape follows
-  return m_atRest || time() >= m_scene.settings.number("solver.max_sim_time") - 1e-12 ||
-         m_steps >= m_scene.settings.integer("solver.max_steps");
+  const bool limit = time() >= m_scene.settings.number("solver.max_sim_time") - 1e-12 ||
+                     m_steps >= m_scene.settings.integer("solver.max_steps");
+  if (m_solver->preview && !previewOnly) return limit;  // else the drape follows
+  return m_atRest || limit;
 }
 
 StepReport Simulation::step() {
@@ -251,6 +263,9 @@ StepReport Simulation::step() {
     report.h = r.h;
     report.iterations = r.newtonIterations;
     report.cgIterations = r.cgIterations;
+    report.assemblyTime = r.hessianSeconds;
+    report.gradientTime = r.gradientSeconds;
+    report.linearSolveTime = r.linearSolveSeconds;
     report.splits = r.splits;
     report.residual = r.residual;
     report.kineticEnergy = r.kineticPercentile;

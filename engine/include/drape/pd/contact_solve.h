@@ -1,10 +1,18 @@
 #pragma once
 // Contact constraints and the collision-aware global solve of pd-dd section 6. Each contact constraint acts on
-// one vertex with A_k = I (as the paper, following Lan et al. 2024), so Delta K is diagonal on the colliding
-// DOFs. After the collision-free solve x = K^-1 b, eq. 14 (K + Delta K) dx = Delta b - Delta K x is solved:
-//   DualThenPcg: the closed-form steepest-descent step of the dual problem (eq. 24, eps_k = K_kk / w_k) moves
-//                the colliding DOFs by (p_k - x_k) / (1 + eps_k); one collision-free solve spreads the remaining
-//                force to the other DOFs; PCG on eq. 14 preconditioned by K^-1 (the DD solve) finishes.
+// one vertex with A_k = I (as the paper, following Lan et al. 2024), so Delta K = S^T W S is diagonal on the
+// colliding DOFs (W = diag(w_k)). After the collision-free solve x = K^-1 b, eq. 14
+//   (K + Delta K) dx = Delta b - Delta K x = S^T W (p - S x)
+// is solved. By the Woodbury identity (eq. 17) dx = K^-1 S^T mu, where the contact forces mu solve the reduced,
+// symmetric positive definite dual system (one unknown per colliding DOF and coordinate)
+//   A mu = g,   A = W^-1 + S K^-1 S^T,   g = p - S x.                                        (dual of eq. 18)
+//   DualThenPcg: steepest descent on the dual from mu = 0 along the eq. 24 direction s = P r, with
+//                P = diag(1 / (1 / w_k + 1 / K_kk)) (mu = P g solves the dual exactly when S K^-1 S^T is diagonal,
+//                i.e. for isolated contacts), and the exact step length (s^T r) / (s^T A s). Each update costs one
+//                collision-free solve (K^-1 S^T s). The full step mu = P g without the line search overshoots by
+//                orders of magnitude on dense contact patches, whose DOFs are coupled through K^-1. The dual
+//                residual times w_k is the residual of eq. 14. PCG on eq. 14 preconditioned by K^-1 (the DD solve)
+//                finishes from dx = K^-1 S^T mu.
 //   Pcg:         PCG on eq. 14 from dx = 0 with the same preconditioner (baseline).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -16,7 +24,7 @@
 namespace drape::pd {
 
 // Active contacts over the free DOFs: dofs[k] is pulled towards targets.row(k) with weight weights[k] (N/m).
-// A DOF may appear once.
+// A DOF may appear once (ContactAccumulator merges several constraints on one DOF).
 struct ContactSet {
   std::vector<int> dofs;
   Eigen::MatrixX3d targets;
@@ -24,16 +32,39 @@ struct ContactSet {
   int size() const { return static_cast<int>(dofs.size()); }
 };
 
+// Gathers position constraints on free DOFs, several per DOF allowed, and merges them: constraints
+// (w_1, p_1), (w_2, p_2) on one DOF are the single constraint (w_1 + w_2, (w_1 p_1 + w_2 p_2) / (w_1 + w_2))
+// up to a constant energy. Not thread-safe: fill from one thread.
+class ContactAccumulator {
+ public:
+  explicit ContactAccumulator(int freeCount = 0) { reset(freeCount); }
+  // Forgets every constraint; freeCount: number of free DOFs (vertices).
+  void reset(int freeCount);
+  // dof in [0, freeCount); target in metres; weight > 0, N/m.
+  void add(int dof, const Eigen::Vector3d& target, double weight);
+  int constraintCount() const { return m_constraints; }  // before merging
+  // Merged constraints, in the order their DOFs were first added.
+  ContactSet merged() const;
+
+ private:
+  std::vector<double> m_weight;                     // per DOF: summed weight (0 = none)
+  std::vector<Eigen::Vector3d> m_weightedTarget;    // per DOF: sum w p
+  std::vector<int> m_touched;                       // DOFs with a constraint, first-added order
+  int m_constraints = 0;
+};
+
 struct ContactSolveStats {
   int sdIterations = 0;
   int pcgIterations = 0;
-  double relativeResidual = 0.0;  // |r| / |r_0| of eq. 14 at exit
+  double relativeResidual = 0.0;    // |r| / |r_0| of eq. 14 at exit (max over the 3 coordinates)
+  double sdRelativeResidual = 0.0;  // the same after the steepest-descent phase (DualThenPcg only)
 };
 
 // x: on entry the collision-free solution K^-1 b (|free| x 3); on exit the solution of (K + Delta K) x =
-// b + Delta b (up to the PCG tolerance / iteration cap). k: the matrix `solver` inverts.
+// b + Delta b (up to the PCG tolerance / iteration cap). k: the matrix `solver` inverts. sdIterations: dual
+// steepest-descent updates of DualThenPcg (>= 1); ignored by Pcg.
 ContactSolveStats solveWithContacts(const Eigen::SparseMatrix<double>& k, const GlobalSolver& solver,
                                     const ContactSet& contacts, ContactSolveKind kind, int maxPcgIterations,
-                                    double pcgTolerance, Eigen::MatrixX3d& x);
+                                    double pcgTolerance, Eigen::MatrixX3d& x, int sdIterations = 1);
 
 }  // namespace drape::pd

@@ -38,13 +38,18 @@ struct PreviewSettings {
   double bendingScale = 1.0;      // multiplies the fabric bending stiffness
   double velocityDamping = 0.0;   // fraction of velocity removed per step, in [0, 1)
 
-  // Contact (pd-dd sections 6, 7.3). Active only with an avatar collider.
+  // Contact (pd-dd sections 6, 7.3). Avatar terms only with an avatar collider, cloth terms only with selfCollision.
   double contactThickness = 0.004;  // metres kept between cloth and avatar surface
   double contactWeight = 1e6;       // w_k of a contact constraint, N/m (pd-dd Tab. 1: kappa_c ~ 1e6)
   double contactMargin = 0.02;      // metres beyond the thickness where vertices are watched during a step
   ContactSolveKind contactSolve = ContactSolveKind::DualThenPcg;
+  int sdIterations = 1;             // dual steepest-descent updates before PCG (eq. 24), each one DD solve
   int maxPcgIterations = 20;
   double pcgTolerance = 1e-6;       // relative residual of eq. 14
+  bool ccd = true;                  // vertex paths of the step tested against the avatar triangles (7.3)
+  double friction = 0.0;            // Coulomb coefficient against the avatar (lagged); 0 = frictionless
+  bool selfCollision = false;       // cloth-cloth vertex-triangle contact (builds the cloth BVH)
+  double selfContactWeight = 1e6;   // w_k of a cloth-cloth constraint, N/m (pd-dd Tab. 1: kappa_s)
 
   // A grabbed vertex is pulled towards the cursor by a position constraint of this weight, N/m, solved with
   // the contacts (no refactorisation).

@@ -26,7 +26,12 @@ struct PreviewReport {
   PreviewStatus status = PreviewStatus::Converged;
   int iterations = 0;          // L-G iterations
   double residual = 0.0;       // normalised move of the last iteration (compared with the tolerance)
-  int contacts = 0;            // contact constraints active in the last iteration
+  int contacts = 0;            // contact constraints active in the last iteration (one per DOF, merged)
+  int ccdContacts = 0;         // of the last iteration's avatar contacts, those found by CCD
+  int staticFriction = 0;      // of the last iteration's avatar contacts, those held by static friction
+  int selfContacts = 0;        // cloth-cloth vertex-triangle constraints of the last iteration (before merging)
+  int selfResolved = 0;        // cloth-cloth pairs closer than the thickness (or crossed) projected at step end
+  int selfCrossed = 0;         // cloth-cloth pairs still crossed after that projection (0 = none left)
   int sdIterations = 0;        // summed over the step
   int pcgIterations = 0;       // summed over the step
   double collisionTime = 0.0;  // seconds: contact detection + collision-aware correction
