@@ -7,11 +7,11 @@
 
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <memory>
 
 #include "drape/collision/avatar_collider.h"
 #include "drape/collision/distance.h"
+#include "drape/geometry/primitives.h"
 #include "drape/pd/cloth_collision.h"
 #include "drape/pd/contact_solve.h"
 #include "drape/pd/global_solver.h"
@@ -24,37 +24,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Closed sphere: octahedron subdivided `levels` times and projected; outward, counter-clockwise.
-TriangleMesh sphereMesh(const Eigen::Vector3d& centre, double radius, int levels) {
-  std::vector<Eigen::Vector3d> v = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  std::vector<Eigen::Vector3i> f = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
-                                    {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-  for (int l = 0; l < levels; ++l) {
-    std::vector<Eigen::Vector3i> next;
-    std::map<std::pair<int, int>, int> mid;
-    auto midpoint = [&](int a, int b) {
-      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-      auto it = mid.find(key);
-      if (it != mid.end()) return it->second;
-      v.push_back((v[a] + v[b]).normalized());
-      return mid[key] = static_cast<int>(v.size()) - 1;
-    };
-    for (const auto& t : f) {
-      const int ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
-      next.push_back({t[0], ab, ca});
-      next.push_back({ab, t[1], bc});
-      next.push_back({ca, bc, t[2]});
-      next.push_back({ab, bc, ca});
-    }
-    f = next;
-  }
-  TriangleMesh m;
-  m.vertices.resize(static_cast<int>(v.size()), 3);
-  for (size_t i = 0; i < v.size(); ++i) m.vertices.row(static_cast<int>(i)) = (centre + radius * v[i]).transpose();
-  m.triangles.resize(static_cast<int>(f.size()), 3);
-  for (size_t i = 0; i < f.size(); ++i) m.triangles.row(static_cast<int>(i)) = f[i].transpose();
-  return m;
-}
 
 // Closed box [-hx, hx] x [-2 hy, 0] x [-hz, hz] (top face at y = 0), rotated by `rotation`; outward.
 TriangleMesh boxMesh(double hx, double hy, double hz, const Eigen::Matrix3d& rotation) {
@@ -208,7 +177,7 @@ DropResult fastDrop(bool ccd, int steps) {
   newton::ClothModel model = makeGridCloth(o);
   model.velocities = Eigen::VectorXd::Zero(model.positions.size());
   for (int v = 0; v < model.numVertices(); ++v) model.velocities[3 * v + 1] = -15.0;
-  auto collider = std::make_shared<const collision::AvatarCollider>(sphereMesh(Eigen::Vector3d::Zero(), radius, 4));
+  auto collider = std::make_shared<const collision::AvatarCollider>(makeIcosphere(Eigen::Vector3d::Zero(), radius, 4));
   PreviewSettings s;
   s.ccd = ccd;
   s.domains = 2;
@@ -380,7 +349,7 @@ double stackedDrop(bool self, int steps, int* selfContacts, int* intersections) 
   s.selfCollision = self;
   s.domains = 2;
   s.maxIterations = 20;
-  auto collider = std::make_shared<const collision::AvatarCollider>(sphereMesh(Eigen::Vector3d::Zero(), 0.2, 4));
+  auto collider = std::make_shared<const collision::AvatarCollider>(makeIcosphere(Eigen::Vector3d::Zero(), 0.2, 4));
   PreviewSolver solver(model, s, collider);
   *selfContacts = 0;
   *intersections = 0;

@@ -4,10 +4,10 @@
 
 #include <cmath>
 #include <cstdio>
-#include <map>
 
 #include "drape/collision/avatar_collider.h"
 #include "drape/core/input_error.h"
+#include "drape/geometry/primitives.h"
 #include "drape/pd/grid_cloth.h"
 #include "drape/pd/local_step.h"
 #include "drape/pd/preview_solver.h"
@@ -142,36 +142,6 @@ TEST(PdPreviewSolver, BadModelThrowsInputError) {
   EXPECT_THROW(PreviewSolver(model, PreviewSettings{}), InputError);
 }
 
-// A coarse closed sphere (octahedron subdivided and projected), outward counter-clockwise.
-TriangleMesh sphereMesh(double radius, int levels) {
-  std::vector<Eigen::Vector3d> v = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  std::vector<Eigen::Vector3i> f = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-  for (int l = 0; l < levels; ++l) {
-    std::vector<Eigen::Vector3i> nf;
-    std::map<std::pair<int, int>, int> mid;
-    auto midpoint = [&](int a, int b) {
-      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-      auto it = mid.find(key);
-      if (it != mid.end()) return it->second;
-      v.push_back((v[a] + v[b]).normalized());
-      return mid[key] = static_cast<int>(v.size()) - 1;
-    };
-    for (const auto& t : f) {
-      const int a = midpoint(t[0], t[1]), b = midpoint(t[1], t[2]), c = midpoint(t[2], t[0]);
-      nf.push_back({t[0], a, c});
-      nf.push_back({a, t[1], b});
-      nf.push_back({c, b, t[2]});
-      nf.push_back({a, b, c});
-    }
-    f = nf;
-  }
-  TriangleMesh m;
-  m.vertices.resize(static_cast<int>(v.size()), 3);
-  for (size_t i = 0; i < v.size(); ++i) m.vertices.row(static_cast<int>(i)) = radius * v[i].normalized().transpose();
-  m.triangles.resize(static_cast<int>(f.size()), 3);
-  for (size_t i = 0; i < f.size(); ++i) m.triangles.row(static_cast<int>(i)) = f[i].transpose();
-  return m;
-}
 
 TEST(PdPreviewSolver, ClothDropsOnSphereWithoutPenetration) {
   GridClothOptions o;
@@ -182,7 +152,7 @@ TEST(PdPreviewSolver, ClothDropsOnSphereWithoutPenetration) {
   o.pinTopCorners = false;
   const newton::ClothModel model = makeGridCloth(o);
   const double radius = 0.3;
-  auto collider = std::make_shared<collision::AvatarCollider>(sphereMesh(radius, 4));
+  auto collider = std::make_shared<collision::AvatarCollider>(makeIcosphere(Eigen::Vector3d::Zero(), radius, 4));
   for (ContactSolveKind kind : {ContactSolveKind::DualThenPcg, ContactSolveKind::Pcg}) {
     PreviewSettings s;
     s.domains = 4;
