@@ -8,9 +8,11 @@
 #include <QTest>
 #include <cstdlib>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "drape/qt/main_window.h"
 #include "drape/qt/scene_document.h"
 #include "drape/qt/user_dialogs.h"
 #include "shared_data.h"
@@ -69,6 +71,18 @@ inline qt::SceneState coarseState(const std::filesystem::path& input) {
 
 inline std::filesystem::path defaultScene() {
   return assetsDir() / "scenes" / "tablecloth.json";
+}
+
+// A shown main window with the coarse default scene open and its first snapshot received; null on failure.
+inline std::unique_ptr<qt::MainWindow> openDefaultWindow(qt::UserDialogs* dialogs) {
+  auto window = std::make_unique<qt::MainWindow>(dialogs);
+  window->document()->setBaseOverrides(coarseOverrides());
+  window->resize(1200, 800);
+  window->show();
+  if (!QTest::qWaitForWindowExposed(window.get()) || !window->openFile(defaultScene()) ||
+      !waitUntil([&] { return window->currentSnapshot() != nullptr; }))
+    return nullptr;
+  return window;
 }
 
 }  // namespace drape::test

@@ -40,13 +40,8 @@ class InteractionTest : public ::testing::Test {
   void SetUp() override {
     if (!guiHaveDisplay()) GTEST_SKIP() << "no display: run under xvfb-run -a";
     guiApplication();
-    window = std::make_unique<qt::MainWindow>(&dialogs);
-    window->document()->setBaseOverrides(coarseOverrides());
-    window->resize(1200, 800);
-    window->show();
-    ASSERT_TRUE(QTest::qWaitForWindowExposed(window.get()));
-    ASSERT_TRUE(window->openFile(defaultScene()));
-    ASSERT_TRUE(waitUntil([&] { return window->currentSnapshot() != nullptr; }));
+    window = openDefaultWindow(&dialogs);
+    ASSERT_NE(window, nullptr) << "the default scene did not open";
     placed = window->currentSnapshot();
     QObject::connect(controller(), &qt::SimulationController::snapshotReady, window.get(),
                      [this](std::shared_ptr<const Snapshot> s) { trace.snapshots.push_back(std::move(s)); });
