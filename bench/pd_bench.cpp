@@ -10,6 +10,7 @@
 #include <tbb/task_arena.h>
 
 #include "drape/collision/avatar_collider.h"
+#include "drape/geometry/primitives.h"
 #include "drape/pd/dd_solver.h"
 #include "drape/pd/domain_partition.h"
 #include "drape/pd/grid_cloth.h"
@@ -156,31 +157,6 @@ void perIterationTable(bool quick) {
       }
 }
 
-TriangleMesh sphere(double radius, int levels) {
-  std::vector<Eigen::Vector3d> v = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  std::vector<Eigen::Vector3i> f = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-  for (int l = 0; l < levels; ++l) {
-    std::vector<Eigen::Vector3i> nf;
-    std::map<std::pair<int, int>, int> mid;
-    auto midpoint = [&](int a, int b) {
-      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-      if (auto it = mid.find(key); it != mid.end()) return it->second;
-      v.push_back((v[a] + v[b]).normalized());
-      return mid[key] = static_cast<int>(v.size()) - 1;
-    };
-    for (const auto& t : f) {
-      const int a = midpoint(t[0], t[1]), b = midpoint(t[1], t[2]), c = midpoint(t[2], t[0]);
-      nf.insert(nf.end(), {{t[0], a, c}, {a, t[1], b}, {c, b, t[2]}, {a, b, c}});
-    }
-    f = nf;
-  }
-  TriangleMesh m;
-  m.vertices.resize(static_cast<int>(v.size()), 3);
-  for (size_t i = 0; i < v.size(); ++i) m.vertices.row(static_cast<int>(i)) = radius * v[i].normalized().transpose();
-  m.triangles.resize(static_cast<int>(f.size()), 3);
-  for (size_t i = 0; i < f.size(); ++i) m.triangles.row(static_cast<int>(i)) = f[i].transpose();
-  return m;
-}
 
 void contactTable(bool quick) {
   std::printf("\n### Collision-aware global solve: dual SD step + PCG vs PCG alone (pd-dd Fig. 8)\n\n");
@@ -195,7 +171,7 @@ void contactTable(bool quick) {
   o.elevation = 0.33;
   o.pinTopCorners = false;
   const newton::ClothModel model = makeGridCloth(o);
-  auto collider = std::make_shared<collision::AvatarCollider>(sphere(0.3, 5));
+  auto collider = std::make_shared<collision::AvatarCollider>(makeIcosphere(Eigen::Vector3d::Zero(), 0.3, 5));
   for (ContactSolveKind kind : {ContactSolveKind::DualThenPcg, ContactSolveKind::Pcg}) {
     PreviewSettings s;
     s.threads = 2;
