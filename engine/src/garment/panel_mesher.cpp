@@ -21,6 +21,7 @@
 #include <sstream>
 
 #include "drape/core/input_error.h"
+#include "drape/geometry/spatial_order.h"
 
 namespace drape {
 namespace {
@@ -169,6 +170,33 @@ void markDomain(Cdt& cdt) {
   }
 }
 
+// CGAL numbers the inserted points in its own (scattered) order. Renumbers them along a Hilbert curve after the
+// boundary points, and sorts the triangles along the same curve by centroid, so that triangles and vertices
+// close in the plane are close in memory (the solvers' assembly and sparse products are memory bound).
+void orderForLocality(int boundaryCount, PanelMesh& mesh) {
+  const int total = static_cast<int>(mesh.vertices.rows());
+  const std::vector<int> interior = hilbertOrder(mesh.vertices.bottomRows(total - boundaryCount));
+  std::vector<int> newIndex(total);
+  std::iota(newIndex.begin(), newIndex.begin() + boundaryCount, 0);
+  Eigen::MatrixX2d vertices = mesh.vertices;
+  for (int k = 0; k < static_cast<int>(interior.size()); ++k) {
+    newIndex[boundaryCount + interior[k]] = boundaryCount + k;
+    vertices.row(boundaryCount + k) = mesh.vertices.row(boundaryCount + interior[k]);
+  }
+  mesh.vertices = std::move(vertices);
+  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t)
+    for (int c = 0; c < 3; ++c) mesh.triangles(t, c) = newIndex[mesh.triangles(t, c)];
+  Eigen::MatrixX2d centroids(mesh.triangles.rows(), 2);
+  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t)
+    centroids.row(t) = (mesh.vertices.row(mesh.triangles(t, 0)) + mesh.vertices.row(mesh.triangles(t, 1)) +
+                        mesh.vertices.row(mesh.triangles(t, 2))) / 3.0;
+  const std::vector<int> triangleOrder = hilbertOrder(centroids);
+  Eigen::MatrixX3i triangles(mesh.triangles.rows(), 3);
+  for (size_t k = 0; k < triangleOrder.size(); ++k)
+    triangles.row(static_cast<Eigen::Index>(k)) = mesh.triangles.row(triangleOrder[k]);
+  mesh.triangles = std::move(triangles);
+}
+
 }  // namespace
 
 PanelMesh meshPanel(const std::vector<Eigen::Vector2d>& boundary, double targetEdgeLength, const std::string& context) {
@@ -219,6 +247,7 @@ PanelMesh meshPanel(const std::vector<Eigen::Vector2d>& boundary, double targetE
   }
   mesh.triangles.resize(static_cast<Eigen::Index>(tris.size()), 3);
   for (size_t t = 0; t < tris.size(); ++t) mesh.triangles.row(static_cast<Eigen::Index>(t)) = tris[t].transpose();
+  orderForLocality(n, mesh);
   return mesh;
 }
 

@@ -1,6 +1,7 @@
 #include "drape/newton/stencil_set.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <numeric>
@@ -11,6 +12,11 @@ namespace {
 
 constexpr int kNoTranspose = -2;  // slot of (b, a) when v_a == v_b: the block is added once, untransposed
 constexpr int kGrain = 64;        // stencils per parallel chunk
+// Chunk schedule: chunks per thread, fewest stencils per chunk, and most chunk colours before the per-stencil
+// colouring is used instead (a non-local order makes every chunk overlap many others).
+constexpr int kChunksPerThread = 8;
+constexpr int kMinChunkStencils = 256;
+constexpr int kMaxChunkColours = 4;
 
 }  // namespace
 
@@ -34,12 +40,79 @@ StencilSet<N>::StencilSet(std::vector<Stencil> stencils) : m_stencils(std::move(
     for (int v : m_stencils[s])
       if (vertexColours[v].empty() || vertexColours[v].back() != c) vertexColours[v].push_back(c);
   }
+  scheduleChunks([](int v) { return v; }, false);  // index order: local on a Hilbert-numbered mesh
+}
+
+template <int N>
+void StencilSet<N>::scheduleChunks(const std::function<int(int)>& row, bool sortByRow) const {
+  const int n = size();
+  std::vector<int> key(n), last(n);
+  for (int s = 0; s < n; ++s) {
+    key[s] = last[s] = row(m_stencils[s][0]);
+    for (int v : m_stencils[s]) {
+      key[s] = std::min(key[s], row(v));
+      last[s] = std::max(last[s], row(v));
+    }
+  }
+  if (sortByRow) {
+    auto byKey = [&key](int a, int b) { return key[a] < key[b] || (key[a] == key[b] && a < b); };
+    std::sort(m_serialOrder.begin(), m_serialOrder.end(), byKey);
+    for (auto& ids : m_colours) std::sort(ids.begin(), ids.end(), byKey);
+  }
+
+  m_chunkStart.clear();
+  m_chunkColours.clear();
+  const int threads = tbb::this_task_arena::max_concurrency();
+  const int chunks = std::min(kChunksPerThread * threads, n / kMinChunkStencils);
+  if (threads < 2 || chunks < 2) return;
+  // Row range of each chunk; two chunks whose ranges do not overlap share no vertex.
+  std::vector<std::pair<int, int>> range(chunks);
+  for (int c = 0; c <= chunks; ++c) m_chunkStart.push_back(static_cast<int>(static_cast<long>(n) * c / chunks));
+  for (int c = 0; c < chunks; ++c) {
+    range[c] = {key[m_serialOrder[m_chunkStart[c]]], -1};
+    for (int k = m_chunkStart[c]; k < m_chunkStart[c + 1]; ++k) {
+      range[c].first = std::min(range[c].first, key[m_serialOrder[k]]);
+      range[c].second = std::max(range[c].second, last[m_serialOrder[k]]);
+    }
+  }
+  // Greedy colouring of the chunks in order: the lowest colour no overlapping chunk has taken.
+  std::vector<int> colour(chunks, -1);
+  for (int c = 0; c < chunks; ++c) {
+    std::vector<char> used(kMaxChunkColours + 1, 0);
+    for (int d = 0; d < c; ++d) {
+      const bool overlap = range[d].first <= range[c].second && range[c].first <= range[d].second;
+      if (overlap) used[colour[d]] = 1;
+    }
+    colour[c] = static_cast<int>(std::find(used.begin(), used.end(), 0) - used.begin());
+    if (colour[c] >= kMaxChunkColours) {  // too many overlaps: no locality, keep the per-stencil colouring
+      m_chunkStart.clear();
+      m_chunkColours.clear();
+      return;
+    }
+    if (colour[c] == numChunkColours()) m_chunkColours.emplace_back();
+    m_chunkColours[colour[c]].push_back(c);
+  }
+}
+
+template <int N>
+std::vector<std::pair<int, int>> StencilSet<N>::chunkRanges(int chunkColour) const {
+  std::vector<std::pair<int, int>> ranges;
+  for (int c : m_chunkColours[chunkColour]) ranges.emplace_back(m_chunkStart[c], m_chunkStart[c + 1]);
+  return ranges;
 }
 
 template <int N>
 void StencilSet<N>::forEach(bool parallel, const std::function<void(const int*, int)>& body) const {
   if (!parallel) {
     if (size() > 0) body(m_serialOrder.data(), size());
+    return;
+  }
+  if (!m_chunkColours.empty()) {
+    for (const auto& chunks : m_chunkColours)
+      tbb::parallel_for(0, static_cast<int>(chunks.size()), [&](int k) {
+        const int c = chunks[k];
+        body(m_serialOrder.data() + m_chunkStart[c], m_chunkStart[c + 1] - m_chunkStart[c]);
+      });
     return;
   }
   for (const auto& ids : m_colours) {
@@ -68,19 +141,9 @@ void StencilSet<N>::prepare(const BlockMatrix& h) const {
       }
   }
   m_patternId = h.patternId();
-  // Locality (6.4): on a reordered (RCM) matrix, visit the stencils of a colour, and the serial order, by their
-  // first storage row, so that consecutive stencils write neighbouring blocks; otherwise in index order.
-  std::vector<int> key(m_stencils.size());
-  for (int s = 0; s < size(); ++s) {
-    key[s] = s;
-    if (h.reordered()) {
-      key[s] = h.internalIndex(m_stencils[s][0]);
-      for (int v : m_stencils[s]) key[s] = std::min(key[s], h.internalIndex(v));
-    }
-  }
-  auto byKey = [&key](int a, int b) { return key[a] < key[b] || (key[a] == key[b] && a < b); };
-  std::sort(m_serialOrder.begin(), m_serialOrder.end(), byKey);
-  for (auto& ids : m_colours) std::sort(ids.begin(), ids.end(), byKey);
+  // Locality (6.4): on a reordered (RCM) matrix, visit the stencils (serial order, chunks, colours) by their
+  // first storage row, so that consecutive stencils write neighbouring blocks.
+  if (h.reordered()) scheduleChunks([&h](int v) { return h.internalIndex(v); }, true);
 }
 
 template <int N>

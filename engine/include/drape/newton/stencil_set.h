@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "drape/newton/block_matrix.h"
@@ -32,9 +33,18 @@ class StencilSet {
   const std::vector<int>& colour(int c) const { return m_colours[c]; }
 
   // Calls body(indices, count) on chunks of stencil indices covering every stencil once. Serial: one chunk,
-  // index order (bitwise the order of a plain loop). Parallel: colour by colour, chunks of one colour on TBB
-  // threads, so bodies that write only to their stencil's vertices never race.
+  // index order (bitwise the order of a plain loop; storage-row order after prepare on an RCM matrix).
+  // Parallel, so bodies that write only to their stencil's vertices never race: when the serial order is local
+  // (neighbouring stencils share vertices, as on a Hilbert-numbered mesh or an RCM matrix), contiguous runs of
+  // the serial order ("chunks") coloured so that chunks of one colour share no vertex, colours in sequence and
+  // chunks of one colour on TBB threads; every thread then walks memory in order. Otherwise the per-stencil
+  // colouring, colour by colour.
   void forEach(bool parallel, const std::function<void(const int* indices, int count)>& body) const;
+  // Number of chunk colours of the parallel schedule (0: the per-stencil colouring is used), and the chunks
+  // of one chunk colour as [begin, end) ranges of the serial order (exposed for tests).
+  int numChunkColours() const { return static_cast<int>(m_chunkColours.size()); }
+  std::vector<std::pair<int, int>> chunkRanges(int chunkColour) const;
+  const std::vector<int>& serialOrder() const { return m_serialOrder; }
 
   // Makes the slot map valid for h's pattern (rebuilt only when h.patternId() changed) and, when h is reordered
   // (RCM), sorts each colour and the serial order by the stencils' first storage row (locality of the writes).
@@ -55,6 +65,12 @@ class StencilSet {
   mutable std::vector<int> m_serialOrder;           // 0 .. size-1 (by storage row after prepare on an RCM matrix)
   mutable std::vector<std::vector<int>> m_colours;  // ascending (by storage row after prepare on an RCM matrix)
   mutable std::vector<std::array<int, 2 * kPairs>> m_slots;  // per stencil and pair: (a, b) and (b, a) slots
+  mutable std::vector<int> m_chunkStart;                     // chunk c: m_serialOrder[start[c] .. start[c + 1])
+  mutable std::vector<std::vector<int>> m_chunkColours;      // chunks of each colour; empty: no chunk schedule
+
+  // Rebuilds the chunk schedule from the rows the stencils' vertices map to; sortByRow first sorts the serial
+  // order and the colours by each stencil's first row (ties by index).
+  void scheduleChunks(const std::function<int(int vertex)>& row, bool sortByRow) const;
   mutable long m_patternId = -1;
 };
 
