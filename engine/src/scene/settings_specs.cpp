@@ -46,6 +46,9 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"solver.preview.max_time", T::Number, "1", "s", "longest preview stage (full pipeline)", 1e-3, 1e4},
       {"solver.preview.rest_speed", T::Number, "0.01", "m/s",
        "the preview is settled when the 99th percentile of vertex speeds falls below this", 0, 100},
+      {"solver.preview.handoff_speed", T::Number, "0.1", "m/s",
+       "full pipeline: the drape takes over once the 99th percentile of vertex speeds stays below this for 0.1 s",
+       0, 100},
       // Newton drape (newton-drape-pizana; defaults from the paper)
       {"solver.newton.tolerance", T::Number, "1e-3", "kg m/s", "Newton tolerance tau_n on the momentum residual", 1e-12,
        1e3},
@@ -55,6 +58,8 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"solver.newton.omega", T::Number, "0.75", "", "time-splitting factor omega", 0.05, 0.99},
       {"solver.newton.grow_after_steps", T::Integer, "5", "", "good steps before h grows back I_s", 1, 1000},
       {"solver.newton.relaxation", T::Boolean, "true", "", "initial relaxation (0.1 s at h_max/16, stiffness ramp)"},
+      {"solver.newton.relaxation_after_preview", T::Boolean, "false", "",
+       "initial relaxation also when the drape starts from the preview's state (seams already closed)"},
       {"solver.newton.early_stop_threshold", T::Number, "1e-8", "J",
        "early stop: 99th percentile of per-vertex kinetic energy", 0, 1},
       {"solver.newton.early_stop_window", T::Number, "0.1", "s", "early stop: time the threshold must hold", 0, 10},

@@ -138,7 +138,10 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
   }
   model.startTime = time;
   m_solver->contact = makeContactTerms(m_scene, m_garment, m_solver->collider);
-  m_solver->newton = std::make_unique<newton::NewtonSolver>(std::move(model), newtonSettingsFrom(m_scene.settings),
+  newton::NewtonSettings settings = newtonSettingsFrom(m_scene.settings);
+  // The relaxation settles a placed garment (seams apart, pre-stretch); the preview has already done that.
+  if (positions.rows() > 0) settings.relaxation = m_scene.settings.flag("solver.newton.relaxation_after_preview");
+  m_solver->newton = std::make_unique<newton::NewtonSolver>(std::move(model), settings,
                                                             std::move(m_solver->contact.energies));
   if (m_dragVertex >= 0) m_solver->newton->setDrag(m_dragVertex, m_dragTarget);
   m_atRest = false;
@@ -237,8 +240,13 @@ StepReport Simulation::step() {
       energies[i] = 0.5 * m_solver->masses[i] * speeds[i] * speeds[i];
     }
     report.kineticEnergy = percentile99(std::move(energies));
-    // Settled: vertex speeds below the threshold for a 0.1 s window (as the drape's early stop).
-    if (percentile99(std::move(speeds)) < m_scene.settings.number("solver.preview.rest_speed") && m_dragVertex < 0) {
+    // Settled: vertex speeds below the threshold for a 0.1 s window (as the drape's early stop). A preview that
+    // hands over to the drape uses the looser hand-off speed: the drape settles the rest, and the preview's lagged
+    // contact and friction keep a creep that the drape does not have.
+    const bool previewOnly = m_scene.settings.text("solver.stage") == "preview";
+    const double restSpeed = m_scene.settings.number(previewOnly ? "solver.preview.rest_speed"
+                                                                 : "solver.preview.handoff_speed");
+    if (percentile99(std::move(speeds)) < restSpeed && m_dragVertex < 0) {
       if (m_restSince < 0) m_restSince = time();
     } else {
       m_restSince = -1.0;
@@ -247,7 +255,7 @@ StepReport Simulation::step() {
     const bool timeUp = time() >= m_scene.settings.number("solver.preview.max_time") - 1e-12;
     report.time = time();
     ++m_steps;
-    if (m_scene.settings.text("solver.stage") == "preview") {
+    if (previewOnly) {
       m_atRest = settled;
       report.atRest = settled;
     } else if ((settled || timeUp) && report.status != StepStatus::Diverged) {

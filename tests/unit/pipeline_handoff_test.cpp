@@ -1,0 +1,63 @@
+// The preview -> drape hand-off of the full pipeline: when the preview hands over (hand-off speed held for 0.1 s,
+// or its time limit) and how the drape starts from the preview's state (no second initial relaxation unless
+// asked for).
+#include <gtest/gtest.h>
+
+#include "drape/scene/scene.h"
+#include "drape/sim/simulation.h"
+#include "shared_data.h"
+
+namespace drape::test {
+namespace {
+
+Scene coarseTablecloth(const std::vector<std::pair<std::string, std::string>>& extra) {
+  SceneRequest request;
+  request.input = assetsDir() / "scenes" / "tablecloth.json";
+  request.overrides = {{"mesh.target_edge_length", "0.08"}, {"solver.stage", "full"}};
+  for (const auto& kv : extra) request.overrides.push_back(kv);
+  return loadScene(request);
+}
+
+// Steps until the drape has run one step; returns that step's report and the scene time the drape started at.
+StepReport firstDrapeStep(Simulation& sim, double* handoffTime) {
+  for (int i = 0; i < 10000 && sim.stage() == "preview"; ++i) sim.step();
+  *handoffTime = sim.time();
+  return sim.step();
+}
+
+TEST(PipelineHandoff, DrapeFromThePreviewSkipsTheInitialRelaxation) {
+  const std::pair<std::string, std::string> shortPreview{"solver.preview.max_time", "0.05"};
+  Simulation plain(coarseTablecloth({shortPreview}));
+  double t0 = 0.0;
+  const StepReport first = firstDrapeStep(plain, &t0);
+  EXPECT_EQ(first.stage, "drape");
+  EXPECT_DOUBLE_EQ(first.h, plain.scene().settings.number("solver.newton.h_max"));
+
+  Simulation relaxed(coarseTablecloth({shortPreview, {"solver.newton.relaxation_after_preview", "true"}}));
+  const StepReport firstRelaxed = firstDrapeStep(relaxed, &t0);
+  EXPECT_DOUBLE_EQ(firstRelaxed.h, relaxed.scene().settings.number("solver.newton.h_max") / 16.0);
+
+  // A drape from the placed garment keeps its relaxation.
+  SceneRequest request;
+  request.input = assetsDir() / "scenes" / "tablecloth.json";
+  request.overrides = {{"mesh.target_edge_length", "0.08"}, {"solver.stage", "drape"}};
+  Simulation direct(loadScene(request));
+  EXPECT_DOUBLE_EQ(direct.step().h, direct.scene().settings.number("solver.newton.h_max") / 16.0);
+}
+
+TEST(PipelineHandoff, PreviewHandsOverOnceTheHandoffSpeedHeldForTheWindow) {
+  // Every speed is below 100 m/s: the hand-off comes after the 0.1 s window, long before the 1 s limit.
+  Simulation eager(coarseTablecloth({{"solver.preview.handoff_speed", "100"}}));
+  double handoff = 0.0;
+  firstDrapeStep(eager, &handoff);
+  EXPECT_GE(handoff, 0.1 - 1e-9);
+  EXPECT_LT(handoff, 0.15);
+  // No speed is below 0: the preview runs to its time limit.
+  Simulation never(coarseTablecloth({{"solver.preview.handoff_speed", "0"}, {"solver.preview.max_time", "0.3"}}));
+  firstDrapeStep(never, &handoff);
+  EXPECT_GE(handoff, 0.3 - 1e-9);
+  EXPECT_LT(handoff, 0.32);
+}
+
+}  // namespace
+}  // namespace drape::test
