@@ -186,6 +186,30 @@ TEST(NewtonSpeedup, ChunkScheduleFallsBackWithoutLocality) {
   });
 }
 
+// The one-pass gradient + Hessian of the first Newton iteration equals the separate passes, with the speed-ups
+// off and on.
+TEST(NewtonSpeedup, FusedGradientAndHessianEqualSeparatePasses) {
+  ClothModel m = grid(30, 0.01, 0.3, 3);
+  Eigen::VectorXd x0 = grid(30, 0.01, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(x0.size());
+  StvkMembrane membrane(m);
+  HingeBending bending(m);
+  MembraneDissipation stretch(membrane.elements(), 1e-2);
+  BendingDissipation bend(bending.hinges(), 1e-1);
+  for (bool fast : {false, true})
+    for (Energy* e : std::vector<Energy*>{&membrane, &bending, &stretch, &bend}) {
+      e->beginStep(context(x0, v0, fast));
+      auto [g, h] = derivatives(*e, m.positions);
+      std::vector<std::pair<int, int>> pairs;
+      e->addCouplings(pairs);
+      BlockMatrix fused(m.numVertices(), pairs);
+      Eigen::VectorXd gFused = Eigen::VectorXd::Zero(g.size());
+      e->addGradientAndHessian(m.positions, gFused, fused);
+      ASSERT_GT(g.norm(), 0.0) << e->name();
+      EXPECT_LT((gFused - g).norm(), 1e-12 * g.norm()) << e->name() << " fast " << fast;
+      EXPECT_LT((Eigen::SparseMatrix<double>(fused.toSparse()) - h).norm(), 1e-12 * h.norm()) << e->name();
+    }
+}
+
 TEST(NewtonSpeedup, FastAssemblyEqualsSerialSearchAssembly) {
   ClothModel m = grid(30, 0.01, 0.3, 3);  // 841 vertices: colours large enough to run in parallel chunks
   Eigen::VectorXd x0 = grid(30, 0.01, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(x0.size());

@@ -168,7 +168,13 @@ void HingeBending::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) con
   });
 }
 
-void HingeBending::addHessian(const Eigen::VectorXd& x, BlockMatrix& hm) const {
+void HingeBending::addHessian(const Eigen::VectorXd& x, BlockMatrix& hm) const { assemble(x, nullptr, hm); }
+
+void HingeBending::addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& hm) const {
+  assemble(x, &g, hm);
+}
+
+void HingeBending::assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockMatrix& hm) const {
   const bool cached = m_options.cachedBlockMap, closedForm = m_options.closedFormBending;
   if (cached) m_stencils.prepare(hm);
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
@@ -180,6 +186,7 @@ void HingeBending::addHessian(const Eigen::VectorXd& x, BlockMatrix& hm) const {
       if (m_exactHessian) he += theta * hingeAngleHessian(h, x);
       he *= m_scale * h.stiffness;
       m_stencils.addHessian(ids[i], he, hm, cached);
+      if (g) m_stencils.addGradient(ids[i], (m_scale * h.stiffness * theta) * grad, *g);
     }
   });
 }

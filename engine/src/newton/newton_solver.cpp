@@ -125,6 +125,11 @@ double NewtonSolver::kineticEnergyPercentile() const {
 void NewtonSolver::residual(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double h, Eigen::VectorXd& b) const {
   Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
   for (const auto& e : m_energies) e->addGradient(x, g);
+  momentumResidual(g, v, h, b);
+}
+
+void NewtonSolver::momentumResidual(const Eigen::VectorXd& g, const Eigen::VectorXd& v, double h,
+                                    Eigen::VectorXd& b) const {
   b = -h * g;
   for (int i = 0; i < m_mass.size(); ++i) b.segment<3>(3 * i) += m_mass(i) * (m_v.segment<3>(3 * i) - v.segment<3>(3 * i));
 }
@@ -136,21 +141,27 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
   v = m_v;
   x = m_x + h * v;
   Eigen::VectorXd b, dv, vls, xls, bls;
+  const double invH2 = 1.0 / (h * h);
+  // The first iteration needs the gradient and the Hessian at the same x: one pass over the stencils.
   auto t0 = Clock::now();
-  residual(x, v, h, b);
-  report.gradientSeconds += secondsSince(t0);
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
+  m_matrix.setZero();
+  for (const auto& e : m_energies) e->addGradientAndHessian(x, g, m_matrix);
+  momentumResidual(g, v, h, b);
+  report.hessianSeconds += secondsSince(t0);
   if (!b.allFinite()) return NewtonStatus::Diverged;
   double rn = b.norm();
   report.residual = rn;
   report.residualHistory.assign(1, rn);
   // As Algorithm 1, at least one Newton iteration runs before the tolerance test.
-  const double invH2 = 1.0 / (h * h);
   for (int it = 0; it < m_settings.maxNewtonIterations; ++it) {
     if (m_cancel.load()) return NewtonStatus::Cancelled;
     // (M + h^2 H) dv = b, solved as (M / h^2 + H) dv = b / h^2.
     t0 = Clock::now();
-    m_matrix.setZero();
-    for (const auto& e : m_energies) e->addHessian(x, m_matrix);
+    if (it > 0) {
+      m_matrix.setZero();
+      for (const auto& e : m_energies) e->addHessian(x, m_matrix);
+    }
     for (int i = 0; i < m_mass.size(); ++i) m_matrix.diagonalBlock(i).diagonal().array() += m_mass(i) * invH2;
     report.hessianSeconds += secondsSince(t0);
     t0 = Clock::now();

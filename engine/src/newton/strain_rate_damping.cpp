@@ -78,6 +78,19 @@ void MembraneDissipation::addHessian(const Eigen::VectorXd&, BlockMatrix& h) con
   });
 }
 
+void MembraneDissipation::addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const {
+  const bool cached = m_options.cachedBlockMap;
+  if (cached) m_stencils.prepare(h);
+  m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
+    for (int i = 0; i < count; ++i) {
+      const int s = ids[i];
+      Eigen::Matrix<double, 9, 9> he = m_jacobians[s].transpose() * m_weights[s].asDiagonal() * m_jacobians[s];
+      m_stencils.addHessian(s, he, h, cached);
+      m_stencils.addGradient(s, he * gatherDelta<3>(m_stencils[s], x, *m_previous), g);  // quadratic in d
+    }
+  });
+}
+
 BendingDissipation::BendingDissipation(std::vector<Hinge> hinges, double beta)
     : m_hinges(std::move(hinges)), m_beta(beta) {
   std::vector<std::array<int, 4>> stencils;
@@ -126,6 +139,20 @@ void BendingDissipation::addHessian(const Eigen::VectorXd&, BlockMatrix& h) cons
       const int s = ids[i];
       Eigen::Matrix<double, 12, 12> he = m_coefficients[s] * (m_gradients[s] * m_gradients[s].transpose());
       m_stencils.addHessian(s, he, h, cached);
+    }
+  });
+}
+
+void BendingDissipation::addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const {
+  const bool cached = m_options.cachedBlockMap;
+  if (cached) m_stencils.prepare(h);
+  m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
+    for (int i = 0; i < count; ++i) {
+      const int s = ids[i];
+      Eigen::Matrix<double, 12, 12> he = m_coefficients[s] * (m_gradients[s] * m_gradients[s].transpose());
+      m_stencils.addHessian(s, he, h, cached);
+      const double rate = m_gradients[s].dot(gatherDelta<4>(m_stencils[s], x, *m_previous));
+      m_stencils.addGradient(s, (m_coefficients[s] * rate) * m_gradients[s], g);
     }
   });
 }

@@ -47,8 +47,9 @@ std::vector<MembraneElement> buildMembraneElements(const ClothModel& model) {
   return out;
 }
 
-Eigen::Matrix<double, 3, 9> greenStrainJacobian(const MembraneElement& e, const Eigen::VectorXd& x) {
-  Eigen::Matrix<double, 3, 2> f = deformationGradient(e, x);
+namespace {
+
+Eigen::Matrix<double, 3, 9> strainJacobianOf(const MembraneElement& e, const Eigen::Matrix<double, 3, 2>& f) {
   Eigen::Matrix<double, 3, 9> j;
   for (int k = 0; k < 3; ++k) {
     j.block<1, 3>(0, 3 * k) = e.c[k](0) * f.col(0).transpose();
@@ -56,6 +57,12 @@ Eigen::Matrix<double, 3, 9> greenStrainJacobian(const MembraneElement& e, const 
     j.block<1, 3>(2, 3 * k) = 0.5 * (e.c[k](0) * f.col(1) + e.c[k](1) * f.col(0)).transpose();
   }
   return j;
+}
+
+}  // namespace
+
+Eigen::Matrix<double, 3, 9> greenStrainJacobian(const MembraneElement& e, const Eigen::VectorXd& x) {
+  return strainJacobianOf(e, deformationGradient(e, x));
 }
 
 StvkMembrane::StvkMembrane(const ClothModel& model) : m_elements(buildMembraneElements(model)) {
@@ -92,9 +99,15 @@ void StvkMembrane::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) con
 }
 
 Eigen::Matrix<double, 9, 9> StvkMembrane::elementHessian(const MembraneElement& e, const Eigen::VectorXd& x) const {
+  return elementDerivatives(e, x, nullptr);
+}
+
+Eigen::Matrix<double, 9, 9> StvkMembrane::elementDerivatives(const MembraneElement& e, const Eigen::VectorXd& x,
+                                                             Eigen::Matrix<double, 9, 1>* ge) const {
   Eigen::Matrix<double, 3, 2> f = deformationGradient(e, x);
   Eigen::Vector3d sigma = greenStrain(f).cwiseProduct(voigtWeights(e));  // dpsi/ds in Voigt form
-  Eigen::Matrix<double, 3, 9> j = greenStrainJacobian(e, x);
+  Eigen::Matrix<double, 3, 9> j = strainJacobianOf(e, f);
+  if (ge) *ge = (m_scale * e.area) * j.transpose() * sigma;
   Eigen::Matrix<double, 9, 9> h = j.transpose() * voigtWeights(e).asDiagonal() * j;
   // Second Piola-Kirchhoff stress as a symmetric 2x2 tensor.
   Eigen::Matrix2d stress;
@@ -114,6 +127,18 @@ void StvkMembrane::addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const {
   if (cached) m_stencils.prepare(h);
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
     for (int i = 0; i < count; ++i) m_stencils.addHessian(ids[i], elementHessian(m_elements[ids[i]], x), h, cached);
+  });
+}
+
+void StvkMembrane::addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const {
+  const bool cached = m_options.cachedBlockMap;
+  if (cached) m_stencils.prepare(h);
+  m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
+    Eigen::Matrix<double, 9, 1> ge;
+    for (int i = 0; i < count; ++i) {
+      m_stencils.addHessian(ids[i], elementDerivatives(m_elements[ids[i]], x, &ge), h, cached);
+      m_stencils.addGradient(ids[i], ge, g);
+    }
   });
 }
 

@@ -56,6 +56,12 @@ class Energy {
   // Blocks between vertex pairs listed by addCouplings land in the static pattern; others (contacts)
   // go to the dynamic part automatically through BlockMatrix::addBlock or explicitly via addDynamicBlock.
   virtual void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const = 0;
+  // Both at the same x in one pass over the stencils (the first Newton iteration of a step needs both at
+  // x_n + h v_n); energies whose Hessian work already yields the gradient override it. Default: both calls.
+  virtual void addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const {
+    addGradient(x, g);
+    addHessian(x, h);
+  }
 
   // Appends the vertex pairs (i, j), i != j, this energy couples on a topology fixed for the whole run
   // (the static block pattern, built once). Contact energies append nothing.

@@ -43,6 +43,7 @@ class HingeBending : public Energy {
   void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
   // Default: Gauss-Newton k_e grad(theta) grad(theta)^T (SPD); exact adds k_e theta Hess(theta).
   void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const override;
+  void addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const override;
   void addCouplings(std::vector<std::pair<int, int>>& pairs) const override;
 
   void setExactHessian(bool exact) { m_exactHessian = exact; }
@@ -50,6 +51,9 @@ class HingeBending : public Energy {
   bool empty() const { return m_hinges.empty(); }
 
  private:
+  // Hessian into h and, when g is given, the gradient into *g (one pass).
+  void assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockMatrix& h) const;
+
   std::vector<Hinge> m_hinges;
   StencilSet<4> m_stencils;  // hinges, coloured, with their block slots
   double m_scale = 1.0;

@@ -67,8 +67,8 @@ struct NewtonStepReport {
   bool atRest = false;        // early-stop criterion met (5.4)
   bool relaxing = false;      // step was inside the relaxation window
   std::vector<std::string> energies;  // names of the energies used
-  // Wall time spent in this step (all attempts), seconds: Hessian assembly, gradient (residual) evaluations,
-  // linear solves.
+  // Wall time spent in this step (all attempts), seconds: Hessian assembly (the first iteration's includes the
+  // gradient at the same x, assembled in the same pass), the other gradient (residual) evaluations, linear solves.
   double hessianSeconds = 0.0;
   double gradientSeconds = 0.0;
   double linearSolveSeconds = 0.0;
@@ -110,7 +110,9 @@ class NewtonSolver {
  private:
   // Attempts one step of size h from the current state. Fills x, v and the report's counters.
   NewtonStatus attempt(double h, double scale, Eigen::VectorXd& x, Eigen::VectorXd& v, NewtonStepReport& report);
+  // b = M (v_n - v) - h dE/dx(x) (eq. 4); momentumResidual takes the gradient g = dE/dx already summed.
   void residual(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double h, Eigen::VectorXd& b) const;
+  void momentumResidual(const Eigen::VectorXd& g, const Eigen::VectorXd& v, double h, Eigen::VectorXd& b) const;
 
   ClothModel m_model;
   NewtonSettings m_settings;

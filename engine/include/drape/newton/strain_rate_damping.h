@@ -34,6 +34,7 @@ class MembraneDissipation : public LaggedDissipation {
   double value(const Eigen::VectorXd& x) const override;
   void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
   void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const override;
+  void addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const override;
   void addCouplings(std::vector<std::pair<int, int>>& pairs) const override { m_stencils.addCouplings(pairs); }
 
  private:
@@ -54,6 +55,7 @@ class BendingDissipation : public LaggedDissipation {
   double value(const Eigen::VectorXd& x) const override;
   void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
   void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const override;
+  void addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const override;
   void addCouplings(std::vector<std::pair<int, int>>& pairs) const override { m_stencils.addCouplings(pairs); }
 
  private:

@@ -35,6 +35,7 @@ class StvkMembrane : public Energy {
   double value(const Eigen::VectorXd& x) const override;
   void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
   void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const override;
+  void addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const override;
   void addCouplings(std::vector<std::pair<int, int>>& pairs) const override;
 
   // Exact Hessian (for tests) instead of the default projected one: material term J^T C J plus the geometric
@@ -42,6 +43,9 @@ class StvkMembrane : public Energy {
   void setExactHessian(bool exact) { m_exactHessian = exact; }
   // 9x9 Hessian of one element (exact or projected per the flag above).
   Eigen::Matrix<double, 9, 9> elementHessian(const MembraneElement& e, const Eigen::VectorXd& x) const;
+  // The element Hessian and (into ge) the element gradient, sharing F and the strain Jacobian.
+  Eigen::Matrix<double, 9, 9> elementDerivatives(const MembraneElement& e, const Eigen::VectorXd& x,
+                                                 Eigen::Matrix<double, 9, 1>* ge) const;
   const std::vector<MembraneElement>& elements() const { return m_elements; }
 
  private:
