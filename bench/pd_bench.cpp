@@ -1,12 +1,21 @@
-// Preview (PD-DD) benchmarks, run by hand: `drape_pd_bench [--quick]`. Prints Markdown tables for
-// docs/BENCHMARKS.md: global solve DD vs monolithic CHOLMOD (pd-dd Fig. 9), Gauss-Seidel vs Jacobi local step
-// (Fig. 12/13), time per L-G iteration at 100k vertices, SD + PCG vs PCG for contact (Fig. 8).
+// Preview (PD-DD) benchmarks, run by hand: `drape_pd_bench [--quick] [global|local|iteration|contact]` and
+// `drape_pd_bench interactive [SCENE] [--steps N] [--cap SECONDS] [--only VARIANT] [--verbose]`. Prints Markdown
+// tables for docs/BENCHMARKS.md: global solve DD vs monolithic CHOLMOD (pd-dd Fig. 9), Gauss-Seidel vs Jacobi
+// local step (Fig. 12/13), time per L-G iteration at 100k vertices, SD + PCG vs PCG for contact (Fig. 8), and the
+// interactive preview speed of a real garment on the mannequin (issue 6: >= 30 steps/s at 10k vertices).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <memory>
 #include <random>
+#include <string>
+#include <vector>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "drape/collision/avatar_collider.h"
@@ -15,7 +24,12 @@
 #include "drape/pd/domain_partition.h"
 #include "drape/pd/grid_cloth.h"
 #include "drape/pd/pd_system.h"
+#include "drape/garment/garment_builder.h"
 #include "drape/pd/preview_solver.h"
+#include "drape/scene/pins.h"
+#include "drape/scene/scene.h"
+#include "drape/sim/snapshot_builder.h"
+#include "sim/cloth_model_builder.h"
 
 using namespace drape;
 using namespace drape::pd;
@@ -187,11 +201,167 @@ void contactTable(bool quick) {
   }
 }
 
+
+// ---- interactive: a real garment on the mannequin --------------------------------------------------------------
+
+// Signed distances (metres) of every vertex of positions (3|V|) to the collider.
+std::vector<double> signedDistances(const collision::AvatarCollider& c, const Eigen::VectorXd& x) {
+  std::vector<double> d(x.size() / 3);
+  tbb::parallel_for(0, static_cast<int>(d.size()), [&](int v) { d[v] = c.signedDistance(x.segment<3>(3 * v)); });
+  return d;
+}
+
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * (v.size() - 1)));
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[k];
+}
+
+struct Variant {
+  std::string name;
+  std::function<void(PreviewSettings&)> apply;
+};
+
+void interactiveTable(const std::string& sceneFile, int steps, double cap, const std::string& only, bool verbose) {
+  SceneRequest request;
+  request.input = sceneFile;
+  const Scene scene = loadScene(request);
+  const Garment garment = buildGarment(scene.pattern, {scene.settings.number("mesh.target_edge_length")});
+  const std::vector<int> pinned = resolvePins(scene, garment);
+  const newton::ClothModel model = buildClothModel(scene, garment, pinned);
+  const TriangleMesh colliderMesh = mergedColliders(scene);
+  std::shared_ptr<const collision::AvatarCollider> collider;
+  if (colliderMesh.triangleCount() > 0) collider = std::make_shared<const collision::AvatarCollider>(colliderMesh);
+  const PreviewSettings base = previewSettingsFrom(scene);
+  const int nv = model.numVertices();
+
+  std::printf("\n### Interactive preview: %s\n\n", sceneFile.c_str());
+  std::printf("%d vertices, %d triangles, %d stitches, %d pinned; contact thickness %.1f mm, weight %.0e N/m, "
+              "friction %.2f, h = 1/%.0f s, %d threads.\n", nv, static_cast<int>(model.triangles.rows()),
+              static_cast<int>(model.stitches.size()), static_cast<int>(model.pinned.size()),
+              1e3 * base.contactThickness, base.contactWeight, base.friction, 1.0 / base.timeStep,
+              tbb::info::default_concurrency());
+  if (collider) {
+    const std::vector<double> d = signedDistances(*collider, model.positions);
+    int inside = 0, withinThickness = 0;
+    for (double v : d) {
+      inside += v < 0.0;
+      withinThickness += v < base.contactThickness;
+    }
+    std::printf("Placement: signed distance to the body min %.1f mm, 1%% %.1f mm, median %.1f mm; %d vertices inside the "
+                "body, %d closer than the thickness.\n", 1e3 * quantile(d, 0.0), 1e3 * quantile(d, 0.01),
+                1e3 * quantile(d, 0.5), inside, withinThickness);
+  }
+  std::printf("Up to %d steps or %.0f s per variant; times are per step (ms); iterations and contacts per step; churn: "
+              "contact DOFs joining or leaving between L-G iterations; final: vertices deeper than the thickness "
+              "inside the body, and the deepest (mm).\n\n", steps, cap);
+
+  using K = ContactSolveKind;
+  const std::vector<Variant> variants = {
+      {"paper: SD + PCG (cap 20), cold", [](PreviewSettings& s) { s.contactSolve = K::DualThenPcg; s.contactWarmStart = false; }},
+      {"SD + PCG, warm start", [](PreviewSettings& s) { s.contactSolve = K::DualThenPcg; }},
+      {"dual CG (K_cc), cold", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.contactWarmStart = false; }},
+      {"dual CG, warm (default)", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; }},
+      {"dual CG, warm, relax 0.1 s", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.relaxationTime = 0.1; }},
+      {"dual CG, warm, relax, tol 1e-2", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.relaxationTime = 0.1; s.pcgTolerance = 1e-2; }},
+      {"dual CG, warm, relax, tol 1e-2, hold", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.relaxationTime = 0.1; s.pcgTolerance = 1e-2; s.holdContactTargets = true; }},
+      {"same, L-G cap 10", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.relaxationTime = 0.1; s.pcgTolerance = 1e-2; s.holdContactTargets = true; s.maxIterations = 10; }},
+      {"same, L-G cap 10, Jacobi local", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.relaxationTime = 0.1; s.pcgTolerance = 1e-2; s.holdContactTargets = true; s.maxIterations = 10; s.localStep = LocalStepKind::Jacobi; }},
+  };
+
+  std::printf("| variant | vertices | steps | steps/s | ms/step | collision | local | global | contact solve | L-G it | SD it "
+              "| PCG it | contacts | churn | final inside | deepest mm |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const Variant& variant : variants) {
+    if (!only.empty() && variant.name.find(only) == std::string::npos) continue;
+    PreviewSettings s = base;
+    variant.apply(s);
+    PreviewSolver solver(model, s, collider);
+    double wall = 0, coll = 0, local = 0, global = 0, contactSolve = 0;
+    long lg = 0, sd = 0, pcg = 0, contacts = 0, churn = 0;
+    int done = 0;
+    bool diverged = false;
+    const auto t0 = Clock::now();
+    Eigen::VectorXd previous = solver.positions();
+    while (done < steps && since(t0) < cap) {
+      const PreviewReport r = solver.step();
+      ++done;
+      wall += r.wallTime;
+      coll += r.collisionTime - r.contactSolveTime;
+      contactSolve += r.contactSolveTime;
+      local += r.localTime;
+      global += r.globalTime;
+      lg += r.iterations;
+      sd += r.sdIterations;
+      pcg += r.pcgIterations;
+      contacts += r.contacts;
+      churn += r.contactChurn;
+      if (verbose) {
+        const Eigen::VectorXd& x = solver.positions();
+        double maxMove = 0.0;
+        for (int v = 0; v < nv; ++v) maxMove = std::max(maxMove, (x.segment<3>(3 * v) - previous.segment<3>(3 * v)).norm());
+        previous = x;
+        int inside = 0;
+        double deepestNow = 0.0;
+        if (collider)
+          for (double d : signedDistances(*collider, x)) {
+            inside += d < -s.contactThickness;
+            deepestNow = std::min(deepestNow, d);
+          }
+        std::printf("  step %3d: %s, %.0f ms, L-G %d (res %.1e), SD %d, PCG %d, contacts %d (ccd %d, static %d), "
+                    "churn %d, contact residual %.1e, max move %.1f mm, %d inside (deepest %.1f mm)\n", done,
+                    toString(r.status), 1e3 * r.wallTime, r.iterations, r.residual, r.sdIterations, r.pcgIterations,
+                    r.contacts, r.ccdContacts, r.staticFriction, r.contactChurn, r.contactResidual, 1e3 * maxMove,
+                    inside, 1e3 * deepestNow);
+      }
+      if (r.status == PreviewStatus::Diverged) {
+        diverged = true;
+        break;
+      }
+    }
+    int deep = 0;
+    double deepest = 0.0;
+    if (collider)
+      for (double v : signedDistances(*collider, solver.positions())) {
+        deep += v < -s.contactThickness;
+        deepest = std::min(deepest, v);
+      }
+    const double n = std::max(done, 1);
+    std::printf("| %s | %d | %d%s | %.2f | %.0f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.0f | %.0f | %d | %.1f |\n",
+                variant.name.c_str(), nv, done, diverged ? " (diverged)" : "", done / wall, 1e3 * wall / n,
+                1e3 * coll / n, 1e3 * local / n, 1e3 * global / n, 1e3 * contactSolve / n, lg / n, sd / n, pcg / n,
+                contacts / n, churn / n, deep, 1e3 * deepest);
+    std::fflush(stdout);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   bool quick = false;
   std::string only;
+  if (argc > 1 && std::strcmp(argv[1], "interactive") == 0) {
+    std::string scene = "bench/scenes/tshirt_female.json", variant;
+    int steps = 60;
+    double cap = 300.0;
+    bool verbose = false;
+    for (int i = 2; i < argc; ++i) {
+      const std::string a = argv[i];
+      if (a == "--steps" && i + 1 < argc) steps = std::atoi(argv[++i]);
+      else if (a == "--cap" && i + 1 < argc) cap = std::atof(argv[++i]);
+      else if (a == "--only" && i + 1 < argc) variant = argv[++i];
+      else if (a == "--verbose") verbose = true;
+      else scene = a;
+    }
+    try {
+      interactiveTable(scene, steps, cap, variant, verbose);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "drape_pd_bench: %s\n", e.what());
+      return 1;
+    }
+    return 0;
+  }
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--quick") == 0) quick = true;
     else only = argv[i];

@@ -29,20 +29,29 @@ void AvatarContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matri
                                const std::vector<int>& freeVertices) {
   const int nf = static_cast<int>(freeVertices.size());
   const double reach = m_options.thickness + m_options.margin;
+  // Beyond the candidates' reach, distances are bounded up to this much more (a query radius: larger costs more).
+  constexpr double kBoundSlack = 0.05;
   std::vector<char> near(nf, 0);
+  m_bound.assign(nf, 0.0f);
+  m_freeStart.resize(nf, 3);
   tbb::parallel_for(0, nf, [&](int d) {
     const int v = freeVertices[d];
+    m_freeStart.row(d) = start.row(v);
     const double travel = (predicted.row(v) - start.row(v)).norm();
+    const double watch = reach + 2.0 * travel;
     collision::SurfacePoint sp;
-    near[d] = m_collider->closest(start.row(v).transpose(), sp, reach + 2.0 * travel);
+    const bool found = m_collider->closest(start.row(v).transpose(), sp, watch + kBoundSlack);
+    near[d] = found && sp.signedDistance < watch;
+    // Rounded down so that the bound stays a lower bound in single precision.
+    m_bound[d] = static_cast<float>((found ? std::max(sp.signedDistance, 0.0) : watch + kBoundSlack) * (1.0 - 1e-6));
   });
+  if (m_options.holdTargets) {
+    m_held.resize(nf);
+    m_heldKind.assign(nf, 0);
+  }
   m_candidates.clear();
-  m_start.clear();
   for (int d = 0; d < nf; ++d)
-    if (near[d]) {
-      m_candidates.push_back(d);
-      m_start.push_back(start.row(freeVertices[d]).transpose());
-    }
+    if (near[d]) m_candidates.push_back(d);
 }
 
 int AvatarContacts::firstCrossing(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1) const {
@@ -67,56 +76,81 @@ int AvatarContacts::firstCrossing(const Eigen::Vector3d& p0, const Eigen::Vector
   return best;
 }
 
-AvatarContactStats AvatarContacts::addConstraints(const Eigen::MatrixX3d& xFree, ContactAccumulator& acc) const {
-  const int nc = static_cast<int>(m_candidates.size());
+char AvatarContacts::constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, Eigen::Vector3d& target) const {
   const double thickness = m_options.thickness;
   const double reach = thickness + m_options.margin;
   const double mu = m_options.friction;
-  // 0: none, 1: proximity, 2: CCD; +4 when static friction held it.
-  std::vector<char> kind(nc, 0);
-  std::vector<Eigen::Vector3d> target(nc);
-  tbb::parallel_for(0, nc, [&](int i) {
-    const Eigen::Vector3d& p0 = m_start[i];
-    const Eigen::Vector3d p1 = xFree.row(m_candidates[i]).transpose();
-    collision::SurfacePoint sp;
-    const bool near = m_collider->closest(p1, sp, reach);
-    const double travel = (p1 - p0).norm();
-    // A segment shorter than the end's distance to the surface cannot have crossed it.
-    const bool mayCross = m_options.ccd && travel > 0.0 && (near ? sp.signedDistance < travel : travel >= reach);
-    const int f = mayCross ? firstCrossing(p0, p1) : -1;
-    Eigen::Vector3d n;
-    if (f >= 0) {
-      const TriangleMesh& mesh = m_collider->mesh();
-      const collision::PointTriangleResult cp = collision::closestPointTriangle(
-          p1, mesh.vertices.row(mesh.triangles(f, 0)).transpose(), mesh.vertices.row(mesh.triangles(f, 1)).transpose(),
-          mesh.vertices.row(mesh.triangles(f, 2)).transpose());
-      n = m_faceNormals[f];
-      target[i] = cp.closest + thickness * n;
-      kind[i] = 2;
-    } else if (near && sp.signedDistance < thickness) {
-      n = sp.normal;
-      target[i] = sp.closest + thickness * n;
-      kind[i] = 1;
+  collision::SurfacePoint sp;
+  const bool near = m_collider->closest(p1, sp, reach);
+  const double travel = (p1 - p0).norm();
+  // A segment shorter than the end's distance to the surface cannot have crossed it.
+  const bool mayCross = m_options.ccd && travel > 0.0 && (near ? sp.signedDistance < travel : travel >= reach);
+  const int f = mayCross ? firstCrossing(p0, p1) : -1;
+  Eigen::Vector3d n;
+  char kind = 0;
+  if (f >= 0) {
+    const TriangleMesh& mesh = m_collider->mesh();
+    const collision::PointTriangleResult cp = collision::closestPointTriangle(
+        p1, mesh.vertices.row(mesh.triangles(f, 0)).transpose(), mesh.vertices.row(mesh.triangles(f, 1)).transpose(),
+        mesh.vertices.row(mesh.triangles(f, 2)).transpose());
+    n = m_faceNormals[f];
+    target = cp.closest + thickness * n;
+    kind = 2;
+  } else if (near && sp.signedDistance < thickness) {
+    n = sp.normal;
+    target = sp.closest + thickness * n;
+    kind = 1;
+  } else {
+    return 0;
+  }
+  const double correction = (target - p1).dot(n);
+  if (mu > 0.0 && correction > 0.0) {
+    const Eigen::Vector3d d = target - p0;
+    const Eigen::Vector3d u = d - d.dot(n) * n;
+    const double slip = u.norm();
+    if (slip <= mu * correction) {
+      target -= u;
+      kind |= 4;
     } else {
-      return;
+      target -= (mu * correction / slip) * u;
     }
-    const double correction = (target[i] - p1).dot(n);
-    if (mu > 0.0 && correction > 0.0) {
-      const Eigen::Vector3d d = target[i] - p0;
-      const Eigen::Vector3d u = d - d.dot(n) * n;
-      const double slip = u.norm();
-      if (slip <= mu * correction) {
-        target[i] -= u;
-        kind[i] |= 4;
-      } else {
-        target[i] -= (mu * correction / slip) * u;
-      }
+  }
+  return kind;
+}
+
+AvatarContactStats AvatarContacts::addConstraints(const Eigen::MatrixX3d& xFree, ContactAccumulator& acc) {
+  // Watched DOFs: the candidates, then the DOFs that moved at least their distance bound minus the reach.
+  std::vector<int> watched = m_candidates;
+  if (!m_bound.empty()) {
+    const double reach = m_options.thickness + m_options.margin;
+    std::vector<char> isCandidate(m_bound.size(), 0);
+    for (int d : m_candidates) isCandidate[d] = 1;
+    for (int d = 0; d < static_cast<int>(m_bound.size()); ++d) {
+      if (isCandidate[d]) continue;
+      const double allowed = m_bound[d] - reach;
+      if (allowed <= 0.0 || (xFree.row(d) - m_freeStart.row(d)).squaredNorm() >= allowed * allowed)
+        watched.push_back(d);
+    }
+  }
+  const int nw = static_cast<int>(watched.size());
+  std::vector<char> kind(nw, 0);
+  std::vector<Eigen::Vector3d> target(nw);
+  tbb::parallel_for(0, nw, [&](int i) {
+    const int d = watched[i];
+    kind[i] = constrain(m_freeStart.row(d).transpose(), xFree.row(d).transpose(), target[i]);
+    if (!m_options.holdTargets || !kind[i]) return;
+    if (m_heldKind[d]) {
+      target[i] = m_held[d];
+      kind[i] = m_heldKind[d];
+    } else {
+      m_held[d] = target[i];
+      m_heldKind[d] = kind[i];
     }
   });
   AvatarContactStats stats;
-  for (int i = 0; i < nc; ++i) {
+  for (int i = 0; i < nw; ++i) {
     if (!kind[i]) continue;
-    acc.add(m_candidates[i], target[i], m_options.weight);
+    acc.add(watched[i], target[i], m_options.weight);
     ++stats.contacts;
     stats.ccdContacts += (kind[i] & 3) == 2;
     stats.staticFriction += (kind[i] & 4) != 0;

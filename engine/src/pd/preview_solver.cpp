@@ -69,6 +69,9 @@ struct PreviewSolver::Impl {
   std::unique_ptr<AvatarContacts> avatar;  // null without a collider
   std::unique_ptr<ClothContacts> cloth;    // null unless settings.selfCollision
   ContactAccumulator accumulator;
+  ContactWarmStart contactWarm;       // last contact forces (settings.contactWarmStart)
+  std::vector<int> lastContactDofs;   // contact set of the previous L-G iteration, for the churn count
+  std::vector<char> churnScratch;
 
   PreviewReport step();
   // Appends the grabbed vertex's constraint (replacing a contact on the same DOF).
@@ -116,7 +119,7 @@ PreviewSolver::PreviewSolver(const newton::ClothModel& model, const PreviewSetti
   if (im.collider)
     im.avatar = std::make_unique<AvatarContacts>(
         im.collider, AvatarContactOptions{settings.contactThickness, settings.contactMargin, settings.contactWeight,
-                                          settings.friction, settings.ccd});
+                                          settings.friction, settings.ccd, settings.holdContactTargets});
   if (settings.selfCollision)
     im.cloth = std::make_unique<ClothContacts>(
         model.triangles, nv, model.stitches, im.system->dofOfVertex(),
@@ -205,7 +208,8 @@ PreviewReport PreviewSolver::Impl::step() {
     if (cloth) cloth->beginStep(x, z);
     rep.collisionTime += seconds(t0, Clock::now());
   }
-  const bool watchContacts = (avatar && avatar->hasCandidates()) || (cloth && cloth->candidateCount() > 0);
+  // Avatar: always watched, since internal forces (stitches) can carry any vertex into the body within a step.
+  const bool watchContacts = avatar || (cloth && cloth->candidateCount() > 0);
 
   x = z;
   Eigen::MatrixX3d b;
@@ -238,10 +242,16 @@ PreviewReport PreviewSolver::Impl::step() {
       if (watchContacts) contacts = detectContacts(xFree, rep);
       else contacts = ContactSet{};
       rep.contacts = contacts.size();
+      if (it > 0) rep.contactChurn += contactChurn(lastContactDofs, contacts, churnScratch);
+      lastContactDofs = contacts.dofs;
       addDrag(contacts);
+      const auto t3 = Clock::now();
       const ContactSolveStats cs =
           solveWithContacts(sys.matrix(), *global, contacts, settings.contactSolve, settings.maxPcgIterations,
-                            settings.pcgTolerance, xFree, settings.sdIterations);
+                            settings.pcgTolerance, xFree, settings.sdIterations,
+                            settings.contactWarmStart ? &contactWarm : nullptr, settings.maxDualIterations);
+      rep.contactSolveTime += seconds(t3, Clock::now());
+      rep.contactResidual = cs.relativeResidual;
       rep.sdIterations += cs.sdIterations;
       rep.pcgIterations += cs.pcgIterations;
       rep.collisionTime += seconds(t2, Clock::now());
@@ -270,6 +280,7 @@ PreviewReport PreviewSolver::Impl::step() {
   }
   if (rep.status == PreviewStatus::Converged || rep.status == PreviewStatus::MaxIterations) {
     v = (x - xPrev) * ((1.0 - settings.velocityDamping) / h);
+    if (startTime + time < settings.relaxationTime) v.setZero();  // quasi-static assembly
     if (!v.allFinite() || !x.allFinite()) restore(PreviewStatus::Diverged);
     else time += h;
   }

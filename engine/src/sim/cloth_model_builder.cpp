@@ -97,6 +97,34 @@ newton::NewtonSettings newtonSettingsFrom(const Settings& s) {
   return n;
 }
 
+pd::PreviewSettings previewSettingsFrom(const Scene& scene) {
+  const Settings& s = scene.settings;
+  pd::PreviewSettings p;
+  p.timeStep = s.number("solver.preview.time_step");
+  p.tolerance = s.number("solver.preview.tolerance");
+  p.maxIterations = s.integer("solver.preview.max_iterations");
+  p.domains = s.integer("solver.preview.domains");
+  p.localStep = s.text("solver.preview.local_step") == "jacobi" ? pd::LocalStepKind::Jacobi : pd::LocalStepKind::GaussSeidel;
+  p.globalSolver = s.text("solver.preview.global_solver") == "monolithic" ? pd::GlobalSolverKind::Monolithic
+                                                                          : pd::GlobalSolverKind::DomainDecomposed;
+  const std::string& contactSolve = s.text("solver.preview.contact_solve");
+  p.contactSolve = contactSolve == "pcg"             ? pd::ContactSolveKind::Pcg
+                   : contactSolve == "dual_then_pcg" ? pd::ContactSolveKind::DualThenPcg
+                                                     : pd::ContactSolveKind::DualCgThenPcg;
+  p.pcgTolerance = s.number("solver.preview.pcg_tolerance");
+  p.holdContactTargets = s.flag("solver.preview.hold_contact_targets");
+  p.relaxationTime = s.number("solver.preview.relaxation_time");
+  p.contactThickness = contactThickness(scene);
+  p.sdIterations = s.integer("solver.preview.sd_iterations");
+  p.ccd = s.flag("solver.preview.ccd");
+  p.selfCollision = s.flag("contact.self_collision");
+  if (s.flag("contact.friction")) {  // as the drape: the largest coefficient of the scene's fabrics
+    p.friction = scene.fabric.friction;
+    for (const auto& [panel, fabric] : scene.panelFabrics) p.friction = std::max(p.friction, fabric.friction);
+  }
+  return p;
+}
+
 double contactThickness(const Scene& scene) {
   if (scene.settings.has("contact.thickness")) return scene.settings.number("contact.thickness");
   double t = scene.fabric.thickness;

@@ -1,8 +1,9 @@
 #pragma once
-// Scene + garment -> the Newton solver's ClothModel and settings. Private to the engine.
+// Scene + garment -> the solvers' ClothModel and settings. Private to the engine (and its benchmarks).
 #include "drape/garment/garment.h"
 #include "drape/newton/cloth_model.h"
 #include "drape/newton/newton_solver.h"
+#include "drape/pd/preview_settings.h"
 #include "drape/scene/scene.h"
 
 namespace drape {
@@ -10,6 +11,10 @@ namespace drape {
 newton::ClothModel buildClothModel(const Scene& scene, const Garment& garment, const std::vector<int>& pinned);
 
 newton::NewtonSettings newtonSettingsFrom(const Settings& settings);
+
+// The preview solver's settings from the scene's solver.preview.* keys (friction: the largest coefficient of the
+// scene's fabrics, as the drape).
+pd::PreviewSettings previewSettingsFrom(const Scene& scene);
 
 // Contact thickness of the scene: contact.thickness if set, else the thickest fabric's thickness, at least 2 mm.
 double contactThickness(const Scene& scene);

@@ -50,29 +50,6 @@ StepStatus toStepStatus(Status s) {
   return StepStatus::Diverged;
 }
 
-pd::PreviewSettings previewSettingsFrom(const Scene& scene) {
-  const Settings& s = scene.settings;
-  pd::PreviewSettings p;
-  p.timeStep = s.number("solver.preview.time_step");
-  p.tolerance = s.number("solver.preview.tolerance");
-  p.maxIterations = s.integer("solver.preview.max_iterations");
-  p.domains = s.integer("solver.preview.domains");
-  p.localStep = s.text("solver.preview.local_step") == "jacobi" ? pd::LocalStepKind::Jacobi : pd::LocalStepKind::GaussSeidel;
-  p.globalSolver = s.text("solver.preview.global_solver") == "monolithic" ? pd::GlobalSolverKind::Monolithic
-                                                                          : pd::GlobalSolverKind::DomainDecomposed;
-  p.contactSolve = s.text("solver.preview.contact_solve") == "pcg" ? pd::ContactSolveKind::Pcg
-                                                                   : pd::ContactSolveKind::DualThenPcg;
-  p.contactThickness = drape::contactThickness(scene);
-  p.sdIterations = s.integer("solver.preview.sd_iterations");
-  p.ccd = s.flag("solver.preview.ccd");
-  p.selfCollision = s.flag("contact.self_collision");
-  if (s.flag("contact.friction")) {  // as the drape: the largest coefficient of the scene's fabrics
-    p.friction = scene.fabric.friction;
-    for (const auto& [panel, fabric] : scene.panelFabrics) p.friction = std::max(p.friction, fabric.friction);
-  }
-  return p;
-}
-
 // 99th percentile of values (copied).
 double percentile99(std::vector<double> values) {
   if (values.empty()) return 0.0;

@@ -28,6 +28,11 @@ struct AvatarContactOptions {
   double weight = 1e6;       // w_k, N/m
   double friction = 0.0;     // Coulomb mu; 0 = frictionless
   bool ccd = true;           // test the step's segments against the collider triangles
+  // Keep, within a step, the target a DOF got when it was first found in contact while it stays in contact:
+  // a contact target is a discontinuous function of the position (closest triangle, CCD crossing, static or
+  // kinetic friction), and re-projecting it every L-G iteration lets vertices on creases of the body cycle
+  // between targets centimetres apart, so the L-G iterations never meet their tolerance.
+  bool holdTargets = false;
 };
 
 struct AvatarContactStats {
@@ -42,14 +47,18 @@ class AvatarContacts {
 
   // Start of a step. start, predicted: |V| x 3 positions at the start of the step and after the inertial
   // prediction; freeVertices: vertex of each free DOF. Keeps the DOFs whose start is closer to the collider than
-  // thickness + margin + 2 |predicted - start| (the others cannot reach it during the step).
+  // thickness + margin + 2 |predicted - start| as candidates, and for every other DOF a lower bound of its
+  // distance to the collider (internal forces, e.g. stitches closing a seam, can move a vertex much farther than
+  // its inertial prediction: addConstraints watches those too).
   void beginStep(const Eigen::MatrixX3d& start, const Eigen::MatrixX3d& predicted,
                  const std::vector<int>& freeVertices);
   bool hasCandidates() const { return !m_candidates.empty(); }
   int candidateCount() const { return static_cast<int>(m_candidates.size()); }
 
-  // Adds the constraints of the candidates at collision-free positions xFree (|free| x 3) to acc. Parallel.
-  AvatarContactStats addConstraints(const Eigen::MatrixX3d& xFree, ContactAccumulator& acc) const;
+  // Adds the constraints of the candidates, and of the other DOFs whose collision-free position moved farther
+  // from the step's start than their distance bound minus thickness + margin, at collision-free positions xFree
+  // (|free| x 3) to acc. Parallel.
+  AvatarContactStats addConstraints(const Eigen::MatrixX3d& xFree, ContactAccumulator& acc);
 
   const AvatarContactOptions& options() const { return m_options; }
 
@@ -57,11 +66,18 @@ class AvatarContacts {
   // Earliest collider triangle crossed from outside by the segment p0 -> p1; -1 when none.
   int firstCrossing(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1) const;
 
+  // One watched DOF: a candidate of beginStep or a DOF that moved far (addConstraints). kind: 0 none,
+  // 1 proximity, 2 CCD, +4 held by static friction.
+  char constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, Eigen::Vector3d& target) const;
+
   std::shared_ptr<const collision::AvatarCollider> m_collider;
   AvatarContactOptions m_options;
   std::vector<Eigen::Vector3d> m_faceNormals;  // unit, outward, per collider triangle
   std::vector<int> m_candidates;               // free DOF indices
-  std::vector<Eigen::Vector3d> m_start;        // start position of each candidate
+  Eigen::MatrixX3d m_freeStart;                // start position of every free DOF (|free| x 3)
+  std::vector<float> m_bound;                  // per free DOF: lower bound of its start distance to the collider
+  std::vector<Eigen::Vector3d> m_held;         // per free DOF: target held in this step (holdTargets)
+  std::vector<char> m_heldKind;                // per free DOF: its kind, 0 = none held
 };
 
 }  // namespace drape::pd

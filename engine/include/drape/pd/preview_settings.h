@@ -7,7 +7,9 @@ namespace drape::pd {
 
 enum class GlobalSolverKind { DomainDecomposed, Monolithic };  // pd-dd section 4 / baseline CHOLMOD on eq. 3
 enum class LocalStepKind { GaussSeidel, Jacobi };              // pd-dd section 5 / vanilla PD baseline
-enum class ContactSolveKind { DualThenPcg, Pcg };              // pd-dd section 6 (eq. 24 + PCG) / plain PCG
+// pd-dd section 6 (eq. 24 + PCG) / plain PCG / the dual solved by conjugate gradients preconditioned by the
+// contact DOFs' block of K, then PCG (contact_solve.h)
+enum class ContactSolveKind { DualThenPcg, Pcg, DualCgThenPcg };
 
 // Allowed range of the principal stretch along one fabric direction (1 = rest length). Inside the range the
 // strain constraint exerts no force (strain limiting); the default [1, 1] pulls towards the rest shape.
@@ -37,16 +39,23 @@ struct PreviewSettings {
   double stitchWeight = 0.0;      // N/m per stitch; 0 = 10 x the largest triangle weight in the model
   double bendingScale = 1.0;      // multiplies the fabric bending stiffness
   double velocityDamping = 0.0;   // fraction of velocity removed per step, in [0, 1)
+  // Seconds of scene time from the start during which velocities are zeroed after every step: the garment
+  // assembles quasi-statically (stitches close the seams within a step or two and would otherwise throw the
+  // panels at metres per second through each other and the body), as the drape's initial relaxation.
+  double relaxationTime = 0.0;
 
   // Contact (pd-dd sections 6, 7.3). Avatar terms only with an avatar collider, cloth terms only with selfCollision.
   double contactThickness = 0.004;  // metres kept between cloth and avatar surface
   double contactWeight = 1e6;       // w_k of a contact constraint, N/m (pd-dd Tab. 1: kappa_c ~ 1e6)
   double contactMargin = 0.02;      // metres beyond the thickness where vertices are watched during a step
-  ContactSolveKind contactSolve = ContactSolveKind::DualThenPcg;
+  ContactSolveKind contactSolve = ContactSolveKind::DualCgThenPcg;
   int sdIterations = 1;             // dual steepest-descent updates before PCG (eq. 24), each one DD solve
+  int maxDualIterations = 100;      // DualCgThenPcg: cap on dual CG iterations, each one DD solve
   int maxPcgIterations = 20;
   double pcgTolerance = 1e-6;       // relative residual of eq. 14
+  bool contactWarmStart = true;     // start each collision-aware solve from the last contact forces (false: from 0)
   bool ccd = true;                  // vertex paths of the step tested against the avatar triangles (7.3)
+  bool holdContactTargets = false;  // avatar contact targets fixed within a step once found (avatar_collision.h)
   double friction = 0.0;            // Coulomb coefficient against the avatar (lagged); 0 = frictionless
   bool selfCollision = false;       // cloth-cloth vertex-triangle contact (builds the cloth BVH)
   double selfContactWeight = 1e6;   // w_k of a cloth-cloth constraint, N/m (pd-dd Tab. 1: kappa_s)

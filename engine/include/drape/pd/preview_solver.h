@@ -35,6 +35,9 @@ struct PreviewReport {
   int sdIterations = 0;        // summed over the step
   int pcgIterations = 0;       // summed over the step
   double collisionTime = 0.0;  // seconds: contact detection + collision-aware correction
+  double contactSolveTime = 0.0;  // seconds: of collisionTime, the collision-aware correction (SD + PCG)
+  int contactChurn = 0;        // contact DOFs that joined or left the set between consecutive L-G iterations
+  double contactResidual = 0.0;  // relative residual of eq. 14 left by the last collision-aware solve
   double localTime = 0.0;      // seconds
   double globalTime = 0.0;     // seconds: collision-free solves
   double wallTime = 0.0;       // seconds, whole step
