@@ -9,7 +9,6 @@
 #include <numeric>
 
 #include "drape/collision/aabb.h"
-#include "drape/collision/ccd.h"
 #include "drape/collision/distance.h"
 
 namespace drape::pd {
@@ -59,84 +58,40 @@ ClothContacts::ClothContacts(const Eigen::MatrixX3i& triangles, int vertexCount,
     if (ra != rb) m_canonical[std::max(ra, rb)] = std::min(ra, rb);
   }
   for (int v = 0; v < vertexCount; ++v) m_canonical[v] = findRoot(m_canonical, v);
-  std::unordered_map<std::uint64_t, int> edgeId;
-  m_vertexEdges.assign(vertexCount, {});
-  m_triangleEdges.resize(m_triangles.rows());
+  std::vector<std::uint64_t> keys;
+  keys.reserve(3 * m_triangles.rows());
   for (int f = 0; f < m_triangles.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
       const int a = std::min(m_triangles(f, k), m_triangles(f, (k + 1) % 3));
       const int b = std::max(m_triangles(f, k), m_triangles(f, (k + 1) % 3));
-      const auto [it, inserted] = edgeId.emplace(pairKey(a, b, vertexCount), static_cast<int>(m_edges.size()));
-      if (inserted) {
-        m_edges.emplace_back(a, b);
-        m_vertexEdges[a].push_back(it->second);
-        m_vertexEdges[b].push_back(it->second);
-      }
-      m_triangleEdges[f][k] = it->second;
+      keys.push_back(pairKey(a, b, vertexCount));
     }
-}
-
-void ClothContacts::gatherEdgePairs(const Eigen::MatrixX3d& start) {
-  const int ne = static_cast<int>(m_edges.size());
-  std::vector<std::uint64_t> keys;
-  for (const Pair& pr : m_pairs)
-    for (int e1 : m_vertexEdges[pr.vertex])
-      for (int e2 : m_triangleEdges[pr.triangle]) {
-        const auto [a0, a1] = m_edges[e1];
-        const auto [b0, b1] = m_edges[e2];
-        const int ca0 = m_canonical[a0], ca1 = m_canonical[a1], cb0 = m_canonical[b0], cb1 = m_canonical[b1];
-        if (ca0 == cb0 || ca0 == cb1 || ca1 == cb0 || ca1 == cb1) continue;
-        keys.push_back(pairKey(std::min(e1, e2), std::max(e1, e2), ne));
-      }
   std::sort(keys.begin(), keys.end());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  m_edgePairs.clear();
-  m_edgePairs.reserve(keys.size());
-  for (std::uint64_t k : keys) {
-    const int e1 = static_cast<int>(k / ne), e2 = static_cast<int>(k % ne);
-    const Eigen::Vector3d p0 = start.row(m_edges[e1].first).transpose(), p1 = start.row(m_edges[e1].second).transpose();
-    const Eigen::Vector3d q0 = start.row(m_edges[e2].first).transpose(), q1 = start.row(m_edges[e2].second).transpose();
-    const double vol = (q0 - p0).dot((p1 - p0).cross(q1 - q0));
-    if (vol == 0.0) continue;
-    m_edgePairs.push_back({e1, e2, vol > 0.0 ? 1.0 : -1.0});
-  }
+  m_edges.reserve(keys.size());
+  for (std::uint64_t k : keys)
+    m_edges.emplace_back(static_cast<int>(k / static_cast<std::uint64_t>(vertexCount)),
+                         static_cast<int>(k % static_cast<std::uint64_t>(vertexCount)));
+  m_guard = std::make_unique<ClothCcdGuard>(m_triangles, m_edges, m_canonical);
 }
 
-int ClothContacts::resolveEdges(const Eigen::MatrixX3d& start, Eigen::MatrixX3d& x,
-                                const std::function<double(int)>& inverseMass, double goal, bool firstSweep,
-                                std::vector<char>& crossed) const {
-  const int np = static_cast<int>(m_edgePairs.size());
-  if (firstSweep) {  // which pairs went through each other during the step (parallel CCD)
-    crossed.assign(np, 0);
-    tbb::parallel_for(0, np, [&](int i) {
-      const EdgePair& ep = m_edgePairs[i];
-      const int id[4] = {m_edges[ep.first].first, m_edges[ep.first].second, m_edges[ep.second].first,
-                         m_edges[ep.second].second};
-      const Eigen::Vector3d p0 = x.row(id[0]).transpose(), p1 = x.row(id[1]).transpose();
-      const Eigen::Vector3d q0 = x.row(id[2]).transpose(), q1 = x.row(id[3]).transpose();
-      if (ep.side * (q0 - p0).dot((p1 - p0).cross(q1 - q0)) > 0.0) return;  // same side as at the start
-      Eigen::Vector3d s0[4], d[4];
-      for (int k = 0; k < 4; ++k) {
-        s0[k] = start.row(id[k]).transpose();
-        d[k] = x.row(id[k]).transpose() - s0[k];
-      }
-      if (collision::edgeEdgeCcd(s0[0], s0[1], s0[2], s0[3], d[0], d[1], d[2], d[3]).hit) crossed[i] = 1;
-    });
-  }
+ClothContacts::~ClothContacts() = default;
+
+int ClothContacts::resolveEdges(Eigen::MatrixX3d& x, const std::function<double(int)>& inverseMass,
+                                double goal) const {
+  const double reach = m_options.thickness + m_options.margin;
   int moved = 0;
-  for (int i = 0; i < np; ++i) {
-    if (!crossed[i]) continue;
-    const EdgePair& ep = m_edgePairs[i];
-    const int id[4] = {m_edges[ep.first].first, m_edges[ep.first].second, m_edges[ep.second].first,
-                       m_edges[ep.second].second};
+  for (const EdgePair& ep : m_edgePairs) {
+    const auto& id = ep.ids;
     const Eigen::Vector3d p0 = x.row(id[0]).transpose(), p1 = x.row(id[1]).transpose();
     const Eigen::Vector3d q0 = x.row(id[2]).transpose(), q1 = x.row(id[3]).transpose();
     const Eigen::Vector3d cross = (p1 - p0).cross(q1 - q0);
     const double len = cross.norm();
     if (!(len > 0.0)) continue;
+    const collision::EdgeEdgeResult cp = collision::closestPointsEdgeEdge(p0, p1, q0, q1);
+    if (cp.distanceSquared >= reach * reach) continue;  // far apart now: left to the guard
     // Unit normal of the two edge lines, oriented so that q is in front of p as at the start.
     const Eigen::Vector3d n = ep.side * cross / len;
-    const collision::EdgeEdgeResult cp = collision::closestPointsEdgeEdge(p0, p1, q0, q1);
     const Eigen::Vector3d gap = (q0 + cp.t * (q1 - q0)) - (p0 + cp.s * (p1 - p0));
     const double height = gap.dot(n);
     if (height >= goal) continue;
@@ -182,6 +137,8 @@ void ClothContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matrix
     ++m_stepsSinceBuild;
   }
   const double reach = m_options.thickness + m_options.margin;
+  // A start verified free of intersections by the last resolve() gives every side directly.
+  m_startVerified = m_lastVerified && m_lastResolved.rows() == start.rows() && m_lastResolved == start;
   tbb::enumerable_thread_specific<std::vector<Pair>> local;
   tbb::parallel_for(0, nv, [&](int v) {
     if (m_dofOfVertex[v] < 0) return;
@@ -200,7 +157,7 @@ void ClothContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matrix
       const bool sided =
           std::abs(height) < reach && planeBarycentric(p0, a, b, c, bary) && bary.minCoeff() >= -kPrismSlack;
       double side = height > 0.0 ? 1.0 : -1.0;
-      if (sided) {  // a side seen before in the prism is kept (read-only lookup, safe in parallel)
+      if (sided && !m_startVerified) {  // a side seen before in the prism is kept (read-only lookup)
         const auto it = m_sides.find(pairKey(v, f, nt));
         if (it != m_sides.end())
           side = it->second;
@@ -214,10 +171,47 @@ void ClothContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matrix
   });
   m_pairs.clear();
   for (auto& part : local) m_pairs.insert(m_pairs.end(), part.begin(), part.end());
+  // Sorted: the Gauss-Seidel projection of resolve() and the constraint order do not depend on the threads.
+  std::sort(m_pairs.begin(), m_pairs.end(), [](const Pair& p, const Pair& q) {
+    return p.vertex != q.vertex ? p.vertex < q.vertex : p.triangle < q.triangle;
+  });
   m_sides.clear();
   for (const Pair& pr : m_pairs)
     if (pr.sided) m_sides.emplace(pairKey(pr.vertex, pr.triangle, nt), pr.side);
-  gatherEdgePairs(start);
+  m_edgePairs.clear();
+}
+
+void ClothContacts::addTouchingPair(const ClothCcdHit& hit, const Eigen::MatrixX3d& start, ClothResolveStats& stats) {
+  const int nt = static_cast<int>(m_triangles.rows());
+  const int v = hit.first, f = hit.second;
+  if (m_dofOfVertex[v] < 0) return;  // a pinned vertex is never constrained (the guard handles its triangles)
+  const auto it = std::lower_bound(m_pairs.begin(), m_pairs.end(), std::make_pair(v, f),
+                                   [](const Pair& p, const std::pair<int, int>& k) {
+                                     return p.vertex != k.first ? p.vertex < k.first : p.triangle < k.second;
+                                   });
+  const bool known = it != m_pairs.end() && it->vertex == v && it->triangle == f;
+  if (known && it->sided) return;
+  double side = 0.0;
+  const auto remembered = m_sides.find(pairKey(v, f, nt));
+  if (!m_startVerified && remembered != m_sides.end()) {
+    side = remembered->second;
+  } else {
+    const Eigen::Vector3d p = start.row(v).transpose();
+    const Eigen::Vector3d a = start.row(m_triangles(f, 0)).transpose();
+    const Eigen::Vector3d b = start.row(m_triangles(f, 1)).transpose();
+    const Eigen::Vector3d c = start.row(m_triangles(f, 2)).transpose();
+    const double height = (p - a).dot((b - a).cross(c - a));
+    if (height == 0.0) return;
+    side = height > 0.0 ? 1.0 : -1.0;
+  }
+  ++stats.ccdCrossings;
+  m_sides[pairKey(v, f, nt)] = side;
+  if (known) {
+    it->sided = true;
+    it->side = side;
+  } else {
+    m_pairs.insert(it, Pair{v, f, side, true});
+  }
 }
 
 ClothResolveStats ClothContacts::resolve(const Eigen::MatrixX3d& start, Eigen::MatrixX3d& x,
@@ -225,40 +219,20 @@ ClothResolveStats ClothContacts::resolve(const Eigen::MatrixX3d& start, Eigen::M
   ClothResolveStats stats;
   const double goal = kResolveFraction * m_options.thickness;
   const double deepest = m_options.thickness + m_options.margin;  // deeper "crossings" are not ours to undo
-  const int nt = static_cast<int>(m_triangles.rows());
-  // Unsided pairs whose vertex ends in the prism on the other side: sided (with their start side) when CCD of the
-  // vertex against the moving triangle finds that it went through the triangle during the step.
-  const int np = static_cast<int>(m_pairs.size());
-  std::vector<char> promote(np, 0);
-  tbb::parallel_for(0, np, [&](int i) {
-    const Pair& pr = m_pairs[i];
-    if (pr.sided) return;
-    const int iv = pr.vertex;
-    const int t[3] = {m_triangles(pr.triangle, 0), m_triangles(pr.triangle, 1), m_triangles(pr.triangle, 2)};
-    const Eigen::Vector3d p = x.row(iv).transpose();
-    const Eigen::Vector3d a = x.row(t[0]).transpose(), b = x.row(t[1]).transpose(), c = x.row(t[2]).transpose();
-    const Eigen::Vector3d cross = (b - a).cross(c - a);
-    const double area2 = cross.norm();
-    if (!(area2 > 0.0)) return;
-    const double height = (p - a).dot(pr.side * cross / area2);
-    if (height >= 0.0 || height < -deepest) return;
-    Eigen::Vector3d bary;
-    if (!planeBarycentric(p, a, b, c, bary) || bary.minCoeff() < 0.0) return;
-    Eigen::Vector3d s0[4], d[4];
-    const int ids[4] = {iv, t[0], t[1], t[2]};
-    for (int k = 0; k < 4; ++k) {
-      s0[k] = start.row(ids[k]).transpose();
-      d[k] = x.row(ids[k]).transpose() - s0[k];
-    }
-    if (collision::vertexTriangleCcd(s0[0], s0[1], s0[2], s0[3], d[0], d[1], d[2], d[3]).hit) promote[i] = 1;
-  });
-  for (int i = 0; i < np; ++i)
-    if (promote[i]) {
-      m_pairs[i].sided = true;
-      m_sides[pairKey(m_pairs[i].vertex, m_pairs[i].triangle, nt)] = m_pairs[i].side;
-      ++stats.ccdCrossings;
-    }
-  std::vector<char> edgeCrossed;
+  // Pairs touching during the step (CCD over start -> x, own broad phase): vertex-triangle pairs become sided
+  // pairs with their start side, edge-edge pairs are projected back to their start side.
+  std::vector<ClothCcdHit> vertexTriangle, edgeEdge;
+  m_guard->findContacts(start, x, vertexTriangle, edgeEdge);
+  for (const ClothCcdHit& hit : vertexTriangle) addTouchingPair(hit, start, stats);
+  m_edgePairs.clear();
+  for (const ClothCcdHit& hit : edgeEdge) {
+    const auto& id = hit.ids;
+    const Eigen::Vector3d p0 = start.row(id[0]).transpose(), p1 = start.row(id[1]).transpose();
+    const Eigen::Vector3d q0 = start.row(id[2]).transpose(), q1 = start.row(id[3]).transpose();
+    const double vol = (q0 - p0).dot((p1 - p0).cross(q1 - q0));
+    if (vol != 0.0) m_edgePairs.push_back({id, vol > 0.0 ? 1.0 : -1.0});
+  }
+  stats.edgeCrossings = static_cast<int>(edgeEdge.size());
   for (int sweep = 0; sweep < maxSweeps; ++sweep) {
     int violations = 0, crossed = 0;
     for (const Pair& pr : m_pairs) {
@@ -288,35 +262,47 @@ ClothResolveStats ClothContacts::resolve(const Eigen::MatrixX3d& start, Eigen::M
       const int tri[3] = {ia, ib, ic};
       for (int k = 0; k < 3; ++k) x.row(tri[k]) -= (w[k] * bary[k] * s) * n.transpose();
     }
-    violations += resolveEdges(start, x, inverseMass, goal, sweep == 0, edgeCrossed);
+    violations += resolveEdges(x, inverseMass, goal);
     if (sweep == 0) {
       stats.violations = violations;
       stats.crossed = crossed;
-      stats.edgeCrossings = static_cast<int>(std::count(edgeCrossed.begin(), edgeCrossed.end(), 1));
     }
     stats.sweeps = sweep + 1;
     if (violations == 0) break;
   }
-  stats.remaining = crossedPairs(x);
+  // The safety net: no vertex keeps a motion that touches another primitive, except, from a start not verified
+  // free of intersections, a vertex going back through a triangle it is remembered to have crossed.
+  std::vector<std::pair<int, int>> exempt;
+  if (!m_startVerified)
+    for (const Pair& pr : m_pairs)
+      if (pr.sided && crossed(pr, start)) exempt.emplace_back(pr.vertex, pr.triangle);
+  const ClothGuardStats guard =
+      m_guard->enforce(start, x, [&](int v) { return inverseMass(v) > 0.0; }, exempt);
+  stats.rolledBack = guard.rolledBack;
+  stats.guardHits = guard.hits;
+  stats.remaining = guard.remaining;
+  m_lastResolved = x;
+  m_lastVerified = guard.remaining == 0 && (m_startVerified || exempt.empty());
   return stats;
 }
 
-int ClothContacts::crossedPairs(const Eigen::MatrixX3d& x) const {
+bool ClothContacts::crossed(const Pair& pr, const Eigen::MatrixX3d& x) const {
   const double deepest = m_options.thickness + m_options.margin;
+  const Eigen::Vector3d p = x.row(pr.vertex).transpose();
+  const Eigen::Vector3d a = x.row(m_triangles(pr.triangle, 0)).transpose();
+  const Eigen::Vector3d b = x.row(m_triangles(pr.triangle, 1)).transpose();
+  const Eigen::Vector3d c = x.row(m_triangles(pr.triangle, 2)).transpose();
+  const Eigen::Vector3d cross = (b - a).cross(c - a);
+  const double area2 = cross.norm();
+  if (!(area2 > 0.0)) return false;
+  const double height = (p - a).dot(pr.side * cross / area2);
+  Eigen::Vector3d bary;
+  return height < 0.0 && height >= -deepest && planeBarycentric(p, a, b, c, bary) && bary.minCoeff() >= 0.0;
+}
+
+int ClothContacts::crossedPairs(const Eigen::MatrixX3d& x) const {
   int count = 0;
-  for (const Pair& pr : m_pairs) {
-    if (!pr.sided) continue;
-    const Eigen::Vector3d p = x.row(pr.vertex).transpose();
-    const Eigen::Vector3d a = x.row(m_triangles(pr.triangle, 0)).transpose();
-    const Eigen::Vector3d b = x.row(m_triangles(pr.triangle, 1)).transpose();
-    const Eigen::Vector3d c = x.row(m_triangles(pr.triangle, 2)).transpose();
-    const Eigen::Vector3d cross = (b - a).cross(c - a);
-    const double area2 = cross.norm();
-    if (!(area2 > 0.0)) continue;
-    const double height = (p - a).dot(pr.side * cross / area2);
-    Eigen::Vector3d bary;
-    if (height < 0.0 && height >= -deepest && planeBarycentric(p, a, b, c, bary) && bary.minCoeff() >= 0.0) ++count;
-  }
+  for (const Pair& pr : m_pairs) count += pr.sided && crossed(pr, x);
   return count;
 }
 

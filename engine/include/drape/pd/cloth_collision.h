@@ -15,19 +15,27 @@
 //   front of the plane on its side (or has crossed to the other side), the target is its projection to the plane
 //   moved by the thickness to that side. Edge / vertex region on its side: pushed to the thickness away from the
 //   closest point.
-//   End of the step (resolve): the step's final positions are projected, Gauss-Seidel over the sided pairs, so
-//   that every vertex in a triangle's prism is at least the thickness in front of it on its side; the correction
-//   is shared between the vertex and the triangle's vertices by inverse mass (the C-IPC-style end-of-step filter
-//   of pd-dd section 8, as a projection instead of a line search).
+//   End of the step (resolve): the step's final positions are projected, Gauss-Seidel over the sided pairs and the
+//   pairs found touching by CCD during the step, so that every vertex in a triangle's prism is at least the
+//   thickness in front of it on its side; the correction is shared between the vertex and the triangle's vertices
+//   by inverse mass. Then the CCD guard (cloth_ccd_guard.h, the end-of-step CCD filter of pd-dd section 8) puts
+//   back at its start position every vertex whose motion over the step still touches another primitive, so a step
+//   that starts free of intersections ends free of them. Pairs are visited in a sorted order: results do not
+//   depend on thread scheduling.
+//   When a step starts exactly where the last resolve() left the cloth (verified free of intersections), sides are
+//   taken from the start positions; the remembered sides only serve a start that was not verified (the first step,
+//   or a state left crossed).
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <unordered_map>
 #include <utility>
 #include <vector>
 
 #include "drape/collision/bvh.h"
+#include "drape/pd/cloth_ccd_guard.h"
 #include "drape/pd/contact_solve.h"
 
 namespace drape::pd {
@@ -45,10 +53,12 @@ struct ClothContactStats {
 struct ClothResolveStats {
   int violations = 0;     // sided pairs closer than the thickness (or crossed) before the first sweep
   int crossed = 0;        // of which on the wrong side of their triangle
-  int remaining = 0;      // sided pairs still crossed after the last sweep
+  int remaining = 0;      // pairs still touching during the step after the guard (0 unless pinned vertices cross)
   int sweeps = 0;         // Gauss-Seidel sweeps made
-  int ccdCrossings = 0;   // unsided pairs found crossed by CCD (then resolved as sided)
-  int edgeCrossings = 0;  // edge-edge pairs found crossed by CCD during the step (then resolved)
+  int ccdCrossings = 0;   // vertex-triangle pairs touching during the step (CCD; then resolved as sided)
+  int edgeCrossings = 0;  // edge-edge pairs touching during the step (CCD; then projected)
+  int rolledBack = 0;     // vertices the guard put back at their start position
+  int guardHits = 0;      // pairs the guard found touching after the projection, before rolling back
 };
 
 class ClothContacts {
@@ -57,6 +67,7 @@ class ClothContacts {
   // must not repel itself); dofOfVertex: free DOF per vertex, -1 for pinned vertices (never constrained).
   ClothContacts(const Eigen::MatrixX3i& triangles, int vertexCount, const std::vector<std::pair<int, int>>& stitches,
                 std::vector<int> dofOfVertex, const ClothContactOptions& options);
+  ~ClothContacts();
 
   // Start of a step: start and predicted are |V| x 3. Gathers the candidate pairs (parallel).
   void beginStep(const Eigen::MatrixX3d& start, const Eigen::MatrixX3d& predicted);
@@ -71,9 +82,10 @@ class ClothContacts {
   // on its side (a pair closer than 3/4 of the thickness is pushed to 3/4 of it). inverseMass(v): weight of
   // vertex v in sharing a correction, 1/kg (0 = does not move, e.g. pinned). At most maxSweeps Gauss-Seidel sweeps
   // (serial); stops after the first sweep without a violation.
-  // start: |V| x 3, the step's start (that beginStep saw). A pair whose vertex was outside the prism at the start
-  // but ends inside on the other side is resolved too when CCD (collision/ccd.h, vertex against the moving
-  // triangle, start -> x) confirms it went through the triangle; it is then remembered as sided.
+  // start: |V| x 3, the step's start (that beginStep saw). Vertex-triangle pairs that CCD (start -> x) finds
+  // touching during the step are resolved as sided pairs with their start side (and remembered), edge-edge pairs
+  // touching during the step are pushed back to their start side. Finally the CCD guard rolls back to start every
+  // movable (inverseMass > 0) vertex whose motion still touches a primitive.
   ClothResolveStats resolve(const Eigen::MatrixX3d& start, Eigen::MatrixX3d& x,
                             const std::function<double(int)>& inverseMass, int maxSweeps = 8);
 
@@ -90,18 +102,16 @@ class ClothContacts {
     bool sided = false;  // the vertex was in the triangle's prism at the step start (side is trusted)
   };
   bool adjacent(int vertex, int triangle) const;
-  // Edge-edge pairs (edges incident to a pair's vertex against the pair triangle's edges) with the sign of
-  // (q0 - p0) . ((p1 - p0) x (q1 - q0)) at the step start; a sign change plus a CCD hit is a crossing.
+  // The pair's vertex is on the wrong side of its triangle, in its prism (within the reach), at x.
+  bool crossed(const Pair& pr, const Eigen::MatrixX3d& x) const;
+  // Sided pair for a vertex-triangle pair CCD found touching; side from the start (or the remembered side).
+  void addTouchingPair(const ClothCcdHit& hit, const Eigen::MatrixX3d& start, ClothResolveStats& stats);
+  // Pushes the touching edge-edge pairs back to goal on their start side; returns the number of pairs moved.
+  int resolveEdges(Eigen::MatrixX3d& x, const std::function<double(int)>& inverseMass, double goal) const;
   struct EdgePair {
-    int first = 0;  // edge ids (m_edges)
-    int second = 0;
-    double side = 1.0;
+    std::array<int, 4> ids{};  // p0, p1, q0, q1
+    double side = 1.0;         // sign of (q0 - p0) . ((p1 - p0) x (q1 - q0)) at the step start
   };
-  void gatherEdgePairs(const Eigen::MatrixX3d& start);
-  // Projects the crossed edge pairs (edge-edge CCD over start -> x) back to goal on their start side; returns
-  // the number of pairs moved.
-  int resolveEdges(const Eigen::MatrixX3d& start, Eigen::MatrixX3d& x, const std::function<double(int)>& inverseMass,
-                   double goal, bool firstSweep, std::vector<char>& crossed) const;
 
   Eigen::MatrixX3i m_triangles;
   std::vector<int> m_dofOfVertex;
@@ -112,10 +122,12 @@ class ClothContacts {
   std::vector<Pair> m_pairs;
   // Side of each sided pair, carried from step to step; key = vertex * |F| + triangle.
   std::unordered_map<std::uint64_t, double> m_sides;
-  std::vector<std::pair<int, int>> m_edges;         // unique edges (vertex pairs, smaller first)
-  std::vector<std::vector<int>> m_vertexEdges;      // per vertex: incident edge ids
-  std::vector<std::array<int, 3>> m_triangleEdges;  // per triangle: its edge ids
-  std::vector<EdgePair> m_edgePairs;
+  std::vector<std::pair<int, int>> m_edges;  // unique edges (vertex pairs, smaller first)
+  std::vector<EdgePair> m_edgePairs;         // edge-edge pairs touching during the step (resolve)
+  std::unique_ptr<ClothCcdGuard> m_guard;
+  Eigen::MatrixX3d m_lastResolved;  // x at the end of the last resolve() (free of intersections when verified)
+  bool m_lastVerified = false;      // the guard left no touching pair in the last resolve()
+  bool m_startVerified = false;     // beginStep's start is m_lastResolved, verified
 };
 
 }  // namespace drape::pd
