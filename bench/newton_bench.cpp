@@ -48,6 +48,7 @@ const std::vector<Feature>& features() {
       {"parallel", "solver.newton.parallel_assembly", [](NewtonSettings& s) { return &s.parallelAssembly; }},
       {"reorder", "solver.newton.reorder_dofs", [](NewtonSettings& s) { return &s.reorderDofs; }},
       {"fused", "solver.cg.fused_kernels", [](NewtonSettings& s) { return &s.linear.fusedKernels; }},
+      {"upper", "solver.cg.upper_storage", [](NewtonSettings& s) { return &s.linear.upperStorage; }},
       {"warm", "solver.cg.warm_start", [](NewtonSettings& s) { return &s.linear.warmStart; }},
       {"mixed", "solver.cg.mixed_precision", [](NewtonSettings& s) { return &s.linear.mixedPrecision; }},
   };
