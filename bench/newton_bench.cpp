@@ -46,6 +46,7 @@ const std::vector<Feature>& features() {
       {"bending", "solver.newton.closed_form_bending", [](NewtonSettings& s) { return &s.closedFormBending; }},
       {"map", "solver.newton.block_map", [](NewtonSettings& s) { return &s.cachedBlockMap; }},
       {"parallel", "solver.newton.parallel_assembly", [](NewtonSettings& s) { return &s.parallelAssembly; }},
+      {"fold", "solver.newton.fold_dissipation", [](NewtonSettings& s) { return &s.foldDissipation; }},
       {"reorder", "solver.newton.reorder_dofs", [](NewtonSettings& s) { return &s.reorderDofs; }},
       {"fused", "solver.cg.fused_kernels", [](NewtonSettings& s) { return &s.linear.fusedKernels; }},
       {"upper", "solver.cg.upper_storage", [](NewtonSettings& s) { return &s.linear.upperStorage; }},

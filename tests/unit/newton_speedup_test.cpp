@@ -210,6 +210,48 @@ TEST(NewtonSpeedup, FusedGradientAndHessianEqualSeparatePasses) {
     }
 }
 
+// Folding the dissipations into the membrane's and the bending's passes assembles the same gradient and Hessian
+// as the four energies on their own.
+TEST(NewtonSpeedup, FoldedDissipationsAssembleTheSameSum) {
+  ClothModel m = grid(30, 0.01, 0.3, 3);
+  Eigen::VectorXd x0 = grid(30, 0.01, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(x0.size());
+  StvkMembrane membrane(m);
+  HingeBending bending(m);
+  MembraneDissipation stretch(membrane.elements(), 1e-2);
+  BendingDissipation bend(bending.hinges(), 1e-1);
+  std::vector<Energy*> energies{&membrane, &bending, &stretch, &bend};
+  std::vector<std::pair<int, int>> pairs;
+  for (Energy* e : energies) e->addCouplings(pairs);
+  auto assemble = [&](bool fold, Eigen::VectorXd& g, Eigen::SparseMatrix<double>& hFirst,
+                      Eigen::SparseMatrix<double>& hLater) {
+    membrane.foldDissipation(fold ? &stretch : nullptr);
+    bending.foldDissipation(fold ? &bend : nullptr);
+    stretch.setFolded(fold);
+    bend.setFolded(fold);
+    for (Energy* e : energies) e->beginStep(context(x0, v0, true));
+    BlockMatrix first(m.numVertices(), pairs), later(m.numVertices(), pairs);
+    g = Eigen::VectorXd::Zero(x0.size());
+    for (Energy* e : energies) e->addGradientAndHessian(m.positions, g, first);
+    for (Energy* e : energies) e->addHessian(m.positions, later);
+    hFirst = first.toSparse();
+    hLater = later.toSparse();
+  };
+  Eigen::VectorXd g0, g1;
+  Eigen::SparseMatrix<double> first0, later0, first1, later1;
+  assemble(false, g0, first0, later0);
+  assemble(true, g1, first1, later1);
+  ASSERT_GT(g0.norm(), 0.0);
+  EXPECT_LT((g1 - g0).norm(), 1e-12 * g0.norm());
+  EXPECT_LT((first1 - first0).norm(), 1e-12 * first0.norm());
+  EXPECT_LT((later1 - later0).norm(), 1e-12 * later0.norm());
+  EXPECT_LT((later0 - first0).norm(), 1e-12 * first0.norm());
+  // Folded, the dissipations alone add nothing to the matrix (their share comes through the partners).
+  BlockMatrix alone(m.numVertices(), pairs);
+  stretch.addHessian(m.positions, alone);
+  bend.addHessian(m.positions, alone);
+  EXPECT_EQ(alone.toSparse().norm(), 0.0);
+}
+
 TEST(NewtonSpeedup, FastAssemblyEqualsSerialSearchAssembly) {
   ClothModel m = grid(30, 0.01, 0.3, 3);  // 841 vertices: colours large enough to run in parallel chunks
   Eigen::VectorXd x0 = grid(30, 0.01, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(x0.size());
@@ -231,7 +273,7 @@ TEST(NewtonSpeedup, SolverResultsIndependentOfSwitches) {
   for (int config = 0; config < 2; ++config) {
     NewtonSettings s;
     s.relaxation = false;
-    s.closedFormBending = s.cachedBlockMap = s.parallelAssembly = config == 1;
+    s.closedFormBending = s.cachedBlockMap = s.parallelAssembly = s.foldDissipation = config == 1;
     NewtonSolver solver(m, s);
     for (int k = 0; k < 30; ++k) ASSERT_EQ(solver.step().status, NewtonStatus::Converged);
     ASSERT_GT((solver.positions() - m.positions).norm(), 1e-3);  // the cloth has moved

@@ -1,5 +1,7 @@
 #include "drape/newton/hinge_bending.h"
 
+#include "drape/newton/strain_rate_damping.h"
+
 #include <Eigen/Geometry>
 #include <unsupported/Eigen/AutoDiff>
 
@@ -176,8 +178,10 @@ void HingeBending::addGradientAndHessian(const Eigen::VectorXd& x, Eigen::Vector
 
 void HingeBending::assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockMatrix& hm) const {
   const bool cached = m_options.cachedBlockMap, closedForm = m_options.closedFormBending;
+  const BendingDissipation* fold = m_options.foldDissipation ? m_dissipation : nullptr;
   if (cached) m_stencils.prepare(hm);
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
+    Grad12 gd;
     for (int i = 0; i < count; ++i) {
       const Hinge& h = m_hinges[ids[i]];
       double theta = 0.0;
@@ -185,8 +189,13 @@ void HingeBending::assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockM
       Eigen::Matrix<double, 12, 12> he = grad * grad.transpose();
       if (m_exactHessian) he += theta * hingeAngleHessian(h, x);
       he *= m_scale * h.stiffness;
+      Grad12 ge = (m_scale * h.stiffness * theta) * grad;
+      if (fold) {
+        he += fold->stencilDerivatives(ids[i], x, g ? &gd : nullptr);
+        if (g) ge += gd;
+      }
       m_stencils.addHessian(ids[i], he, hm, cached);
-      if (g) m_stencils.addGradient(ids[i], (m_scale * h.stiffness * theta) * grad, *g);
+      if (g) m_stencils.addGradient(ids[i], ge, *g);
     }
   });
 }

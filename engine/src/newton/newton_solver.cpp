@@ -44,10 +44,12 @@ NewtonSolver::NewtonSolver(ClothModel model, NewtonSettings settings, std::vecto
   m_mass = lumpedVertexMasses(m_model);
 
   auto membrane = std::make_unique<StvkMembrane>(m_model);
+  StvkMembrane* membraneEnergy = membrane.get();
   membrane->setExactHessian(!m_settings.projectHessians);
   std::vector<MembraneElement> elements = membrane->elements();
   m_energies.push_back(std::move(membrane));
   auto bending = std::make_unique<HingeBending>(m_model);
+  HingeBending* bendingEnergy = bending.get();
   bending->setExactHessian(!m_settings.projectHessians);
   std::vector<Hinge> hinges = bending->hinges();
   if (!bending->empty()) m_energies.push_back(std::move(bending));
@@ -62,10 +64,19 @@ NewtonSolver::NewtonSolver(ClothModel model, NewtonSettings settings, std::vecto
   }
   if (m_model.gravity.squaredNorm() > 0.0) m_energies.push_back(std::make_unique<Gravity>(m_mass, m_model.gravity));
   if (m_settings.alpha > 0.0) m_energies.push_back(std::make_unique<AirDrag>(m_mass, m_settings.alpha));
-  if (m_settings.betaStretch > 0.0)
-    m_energies.push_back(std::make_unique<MembraneDissipation>(elements, m_settings.betaStretch));
-  if (m_settings.betaBend > 0.0 && !hinges.empty())
-    m_energies.push_back(std::make_unique<BendingDissipation>(hinges, m_settings.betaBend));
+  // The dissipations share the membrane's triangles and the bending's hinges: folded into their Hessian passes.
+  if (m_settings.betaStretch > 0.0) {
+    auto stretch = std::make_unique<MembraneDissipation>(elements, m_settings.betaStretch);
+    membraneEnergy->foldDissipation(stretch.get());
+    stretch->setFolded(true);
+    m_energies.push_back(std::move(stretch));
+  }
+  if (m_settings.betaBend > 0.0 && !hinges.empty()) {
+    auto bend = std::make_unique<BendingDissipation>(hinges, m_settings.betaBend);
+    bendingEnergy->foldDissipation(bend.get());
+    bend->setFolded(true);
+    m_energies.push_back(std::move(bend));
+  }
   for (auto& e : extra) m_energies.push_back(std::move(e));
 
   std::vector<std::pair<int, int>> couplings;
@@ -81,6 +92,7 @@ AssemblyOptions NewtonSolver::assemblyOptions() const {
   o.closedFormBending = m_settings.closedFormBending;
   o.cachedBlockMap = m_settings.cachedBlockMap;
   o.parallel = m_settings.parallelAssembly;
+  o.foldDissipation = m_settings.foldDissipation;
   return o;
 }
 

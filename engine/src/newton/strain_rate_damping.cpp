@@ -66,7 +66,15 @@ void MembraneDissipation::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd&
   });
 }
 
+Eigen::Matrix<double, 9, 9> MembraneDissipation::stencilDerivatives(int s, const Eigen::VectorXd& x,
+                                                                    Eigen::Matrix<double, 9, 1>* ge) const {
+  Eigen::Matrix<double, 9, 9> he = m_jacobians[s].transpose() * m_weights[s].asDiagonal() * m_jacobians[s];
+  if (ge) *ge = he * gatherDelta<3>(m_stencils[s], x, *m_previous);  // quadratic in d = x - x_n
+  return he;
+}
+
 void MembraneDissipation::addHessian(const Eigen::VectorXd&, BlockMatrix& h) const {
+  if (folded()) return;
   const bool cached = m_options.cachedBlockMap;
   if (cached) m_stencils.prepare(h);
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
@@ -79,6 +87,7 @@ void MembraneDissipation::addHessian(const Eigen::VectorXd&, BlockMatrix& h) con
 }
 
 void MembraneDissipation::addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const {
+  if (folded()) return;
   const bool cached = m_options.cachedBlockMap;
   if (cached) m_stencils.prepare(h);
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
@@ -131,7 +140,14 @@ void BendingDissipation::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& 
   });
 }
 
+Eigen::Matrix<double, 12, 12> BendingDissipation::stencilDerivatives(int s, const Eigen::VectorXd& x,
+                                                                     Eigen::Matrix<double, 12, 1>* ge) const {
+  if (ge) *ge = (m_coefficients[s] * m_gradients[s].dot(gatherDelta<4>(m_stencils[s], x, *m_previous))) * m_gradients[s];
+  return m_coefficients[s] * (m_gradients[s] * m_gradients[s].transpose());
+}
+
 void BendingDissipation::addHessian(const Eigen::VectorXd&, BlockMatrix& h) const {
+  if (folded()) return;
   const bool cached = m_options.cachedBlockMap;
   if (cached) m_stencils.prepare(h);
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
@@ -144,6 +160,7 @@ void BendingDissipation::addHessian(const Eigen::VectorXd&, BlockMatrix& h) cons
 }
 
 void BendingDissipation::addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const {
+  if (folded()) return;
   const bool cached = m_options.cachedBlockMap;
   if (cached) m_stencils.prepare(h);
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {

@@ -1,5 +1,7 @@
 #include "drape/newton/stvk_membrane.h"
 
+#include "drape/newton/strain_rate_damping.h"
+
 #include <Eigen/Eigenvalues>
 #include <stdexcept>
 #include <string>
@@ -124,19 +126,30 @@ Eigen::Matrix<double, 9, 9> StvkMembrane::elementDerivatives(const MembraneEleme
 
 void StvkMembrane::addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const {
   const bool cached = m_options.cachedBlockMap;
+  const MembraneDissipation* fold = m_options.foldDissipation ? m_dissipation : nullptr;
   if (cached) m_stencils.prepare(h);
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
-    for (int i = 0; i < count; ++i) m_stencils.addHessian(ids[i], elementHessian(m_elements[ids[i]], x), h, cached);
+    for (int i = 0; i < count; ++i) {
+      Eigen::Matrix<double, 9, 9> he = elementHessian(m_elements[ids[i]], x);
+      if (fold) he += fold->stencilDerivatives(ids[i], x, nullptr);
+      m_stencils.addHessian(ids[i], he, h, cached);
+    }
   });
 }
 
 void StvkMembrane::addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const {
   const bool cached = m_options.cachedBlockMap;
   if (cached) m_stencils.prepare(h);
+  const MembraneDissipation* fold = m_options.foldDissipation ? m_dissipation : nullptr;
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
-    Eigen::Matrix<double, 9, 1> ge;
+    Eigen::Matrix<double, 9, 1> ge, gd;
     for (int i = 0; i < count; ++i) {
-      m_stencils.addHessian(ids[i], elementDerivatives(m_elements[ids[i]], x, &ge), h, cached);
+      Eigen::Matrix<double, 9, 9> he = elementDerivatives(m_elements[ids[i]], x, &ge);
+      if (fold) {
+        he += fold->stencilDerivatives(ids[i], x, &gd);
+        ge += gd;
+      }
+      m_stencils.addHessian(ids[i], he, h, cached);
       m_stencils.addGradient(ids[i], ge, g);
     }
   });

@@ -84,6 +84,8 @@ const std::vector<SettingSpec>& Settings::specs() {
        "closed-form hinge-angle gradient (false: automatic differentiation)"},
       {"solver.newton.block_map", T::Boolean, "true", "", "precomputed stencil -> matrix block map (6.1)"},
       {"solver.newton.parallel_assembly", T::Boolean, "true", "", "stencil colouring + TBB assembly (6.5)"},
+      {"solver.newton.fold_dissipation", T::Boolean, "true", "",
+       "membrane and bending add their dissipations' element Hessians before one scatter per stencil"},
       {"solver.damping.air", T::Number, "5", "1/s", "air drag alpha", 0, 1e3},
       {"solver.damping.stretch", T::Number, "1e-2", "s", "stretch dissipation beta_s", 0, 10},
       {"solver.damping.bend", T::Number, "1e-1", "s", "bending dissipation beta_b", 0, 10},

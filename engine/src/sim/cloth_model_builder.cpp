@@ -80,6 +80,7 @@ newton::NewtonSettings newtonSettingsFrom(const Settings& s) {
   n.closedFormBending = s.flag("solver.newton.closed_form_bending");
   n.cachedBlockMap = s.flag("solver.newton.block_map");
   n.parallelAssembly = s.flag("solver.newton.parallel_assembly");
+  n.foldDissipation = s.flag("solver.newton.fold_dissipation");
   const std::string& pre = s.text("solver.cg.preconditioner");
   if (pre == "cholmod_direct") {
     n.linear.kind = newton::LinearSolverKind::Cholmod;

@@ -18,6 +18,9 @@ struct AssemblyOptions {
   bool closedFormBending = true;  // closed-form dihedral-angle gradient instead of automatic differentiation
   bool cachedBlockMap = true;     // write Hessian blocks through a precomputed stencil -> block slot map (6.1)
   bool parallel = true;           // stencil colouring, colours in sequence, one colour in parallel (6.5)
+  // The membrane and hinge bending add the element Hessians (and, in addGradientAndHessian, gradients) of the
+  // dissipations on the same stencils to their own before one scatter; the dissipations then add nothing there.
+  bool foldDissipation = true;
 };
 
 // Quantities fixed during one time step, handed to every energy before the step's Newton iterations.

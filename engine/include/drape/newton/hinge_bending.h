@@ -34,6 +34,8 @@ Eigen::Matrix<double, 12, 1> hingeAngleGradient(const Hinge& hinge, const Eigen:
 // Exact Hessian of the angle (12 x 12), by forward-mode automatic differentiation of the gradient.
 Eigen::Matrix<double, 12, 12> hingeAngleHessian(const Hinge& hinge, const Eigen::VectorXd& x);
 
+class BendingDissipation;
+
 class HingeBending : public Energy {
  public:
   explicit HingeBending(const ClothModel& model);
@@ -49,8 +51,12 @@ class HingeBending : public Energy {
   void setExactHessian(bool exact) { m_exactHessian = exact; }
   const std::vector<Hinge>& hinges() const { return m_hinges; }
   bool empty() const { return m_hinges.empty(); }
+  // The bending dissipation on the same hinges (same order), folded into this energy's Hessian passes when
+  // AssemblyOptions::foldDissipation is on (the solver also calls its setFolded). nullptr: none.
+  void foldDissipation(const BendingDissipation* dissipation) { m_dissipation = dissipation; }
 
  private:
+  const BendingDissipation* m_dissipation = nullptr;
   // Hessian into h and, when g is given, the gradient into *g (one pass).
   void assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockMatrix& h) const;
 

@@ -37,8 +37,18 @@ class MembraneDissipation : public LaggedDissipation {
   void addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const override;
   void addCouplings(std::vector<std::pair<int, int>>& pairs) const override { m_stencils.addCouplings(pairs); }
 
+  // Element Hessian of triangle s for this step (constant within it) and, when ge is given, the element gradient
+  // at x (beginStep first).
+  Eigen::Matrix<double, 9, 9> stencilDerivatives(int s, const Eigen::VectorXd& x, Eigen::Matrix<double, 9, 1>* ge) const;
+  // Set by the solver when the membrane on the same triangles folds this energy into its Hessian passes
+  // (AssemblyOptions::foldDissipation): addHessian and addGradientAndHessian then add nothing.
+  void setFolded(bool folded) { m_folded = folded; }
+
  private:
+  bool folded() const { return m_folded && m_options.foldDissipation; }
+
   std::vector<MembraneElement> m_elements;
+  bool m_folded = false;
   double m_beta;
   StencilSet<3> m_stencils;
   std::vector<Eigen::Matrix<double, 3, 9>> m_jacobians;  // J per triangle, at x_n
@@ -58,8 +68,17 @@ class BendingDissipation : public LaggedDissipation {
   void addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const override;
   void addCouplings(std::vector<std::pair<int, int>>& pairs) const override { m_stencils.addCouplings(pairs); }
 
+  // Element Hessian of hinge s for this step and, when ge is given, the element gradient at x (beginStep first).
+  Eigen::Matrix<double, 12, 12> stencilDerivatives(int s, const Eigen::VectorXd& x,
+                                                   Eigen::Matrix<double, 12, 1>* ge) const;
+  // As MembraneDissipation::setFolded, for the hinge bending on the same hinges.
+  void setFolded(bool folded) { m_folded = folded; }
+
  private:
+  bool folded() const { return m_folded && m_options.foldDissipation; }
+
   std::vector<Hinge> m_hinges;
+  bool m_folded = false;
   double m_beta;
   StencilSet<4> m_stencils;
   std::vector<Eigen::Matrix<double, 12, 1>> m_gradients;  // angle gradient per hinge, at x_n

@@ -13,6 +13,8 @@
 
 namespace drape::newton {
 
+class MembraneDissipation;
+
 // Precomputed rest data of one triangle.
 struct MembraneElement {
   std::array<int, 3> v{};                 // vertex indices
@@ -47,8 +49,12 @@ class StvkMembrane : public Energy {
   Eigen::Matrix<double, 9, 9> elementDerivatives(const MembraneElement& e, const Eigen::VectorXd& x,
                                                  Eigen::Matrix<double, 9, 1>* ge) const;
   const std::vector<MembraneElement>& elements() const { return m_elements; }
+  // The stretch dissipation on the same triangles (same order), folded into this energy's Hessian passes when
+  // AssemblyOptions::foldDissipation is on (the solver also calls its setFolded). nullptr: none.
+  void foldDissipation(const MembraneDissipation* dissipation) { m_dissipation = dissipation; }
 
  private:
+  const MembraneDissipation* m_dissipation = nullptr;
   std::vector<MembraneElement> m_elements;
   StencilSet<3> m_stencils;  // triangles, coloured, with their block slots
   double m_scale = 1.0;
