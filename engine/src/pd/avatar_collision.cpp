@@ -1,6 +1,7 @@
 #include "drape/pd/avatar_collision.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 
 #include <tbb/parallel_for.h>
 
@@ -34,9 +35,12 @@ void AvatarContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matri
   std::vector<char> near(nf, 0);
   m_bound.assign(nf, 0.0f);
   m_freeStart.resize(nf, 3);
+  m_freePredicted.resize(nf, 3);
+  if (m_options.targets == ContactTargetKind::StepPlanes) m_planes.assign(nf, StepPlanes{});
   tbb::parallel_for(0, nf, [&](int d) {
     const int v = freeVertices[d];
     m_freeStart.row(d) = start.row(v);
+    m_freePredicted.row(d) = predicted.row(v);
     const double travel = (predicted.row(v) - start.row(v)).norm();
     const double watch = reach + 2.0 * travel;
     collision::SurfacePoint sp;
@@ -76,10 +80,10 @@ int AvatarContacts::firstCrossing(const Eigen::Vector3d& p0, const Eigen::Vector
   return best;
 }
 
-char AvatarContacts::constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, Eigen::Vector3d& target) const {
+char AvatarContacts::constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& z,
+                               Eigen::Vector3d& target) const {
   const double thickness = m_options.thickness;
   const double reach = thickness + m_options.margin;
-  const double mu = m_options.friction;
   collision::SurfacePoint sp;
   const bool near = m_collider->closest(p1, sp, reach);
   const double travel = (p1 - p0).norm();
@@ -104,17 +108,100 @@ char AvatarContacts::constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d&
     return 0;
   }
   const double correction = (target - p1).dot(n);
-  if (mu > 0.0 && correction > 0.0) {
-    const Eigen::Vector3d d = target - p0;
-    const Eigen::Vector3d u = d - d.dot(n) * n;
-    const double slip = u.norm();
-    if (slip <= mu * correction) {
-      target -= u;
-      kind |= 4;
-    } else {
-      target -= (mu * correction / slip) * u;
+  const double load = m_options.frictionLoad == FrictionLoadKind::Inertial ? (target - z).dot(n) : correction;
+  if (correction > 0.0 && applyFriction(p0, n, load, target)) kind |= 4;
+  return kind;
+}
+
+bool AvatarContacts::applyFriction(const Eigen::Vector3d& start, const Eigen::Vector3d& n, double c,
+                                   Eigen::Vector3d& target) const {
+  const double mu = m_options.friction;
+  if (!(mu > 0.0) || !(c > 0.0)) return false;
+  const Eigen::Vector3d d = target - start;
+  const Eigen::Vector3d u = d - d.dot(n) * n;
+  const double slip = u.norm();
+  if (slip <= mu * c) {
+    target -= u;
+    return true;
+  }
+  target -= (mu * c / slip) * u;
+  return false;
+}
+
+Eigen::Vector3d AvatarContacts::projectToPlanes(const StepPlanes& planes, Eigen::Vector3d x) const {
+  const double thickness = m_options.thickness;
+  // One plane: exact in one pass. Several: cyclic projections (a few passes reach the intersection of the
+  // shallow wedges of a body crease to well under the thickness).
+  const int passes = planes.count > 1 ? 6 : 1;
+  for (int pass = 0; pass < passes; ++pass)
+    for (int i = 0; i < planes.count; ++i) {
+      const double gap = (x - planes.point[i]).dot(planes.normal[i]);
+      if (gap < thickness) x += (thickness - gap) * planes.normal[i];
+    }
+  return x;
+}
+
+char AvatarContacts::constrainToPlanes(int d, const Eigen::Vector3d& x, Eigen::Vector3d& target, int& added) {
+  const double thickness = m_options.thickness;
+  const double reach = thickness + m_options.margin;
+  const Eigen::Vector3d s = m_freeStart.row(d).transpose();
+  StepPlanes& planes = m_planes[d];
+  added = 0;
+  const auto addPlane = [&](const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
+    if (planes.count >= kMaxPlanes || !(normal.squaredNorm() > 0.5)) return false;
+    planes.point[planes.count] = point;
+    planes.normal[planes.count] = normal;
+    ++planes.count;
+    ++added;
+    return true;
+  };
+  // The half-space of the start position: looked for (within reach of the segment start -> x) until found.
+  if (m_options.ccd && planes.count == 0 && !planes.started) {
+    const double radius = reach + (x - s).norm();
+    collision::SurfacePoint sp;
+    if (m_collider->closest(s, sp, radius)) {
+      addPlane(sp.closest, sp.normal);
+      planes.started = true;
     }
   }
+  target = projectToPlanes(planes, x);
+  // Check against the real surface; add the half-space of what the target violates.
+  for (int round = planes.count; round < kMaxPlanes; ++round) {
+    collision::SurfacePoint sp;
+    const bool found = m_collider->closest(target, sp, reach);
+    const double limit = planes.count == 0 ? thickness : 0.5 * thickness;
+    const double travel = (target - s).norm();
+    int f = -1;
+    if (m_options.ccd && travel > 0.0 && (found ? sp.signedDistance < 0.0 : travel >= reach))
+      f = firstCrossing(s, target);
+    bool grew = false;
+    if (f >= 0) {
+      const TriangleMesh& mesh = m_collider->mesh();
+      const collision::PointTriangleResult cp = collision::closestPointTriangle(
+          target, mesh.vertices.row(mesh.triangles(f, 0)).transpose(),
+          mesh.vertices.row(mesh.triangles(f, 1)).transpose(), mesh.vertices.row(mesh.triangles(f, 2)).transpose());
+      grew = addPlane(cp.closest, m_faceNormals[f]);
+    } else if (found && sp.signedDistance < limit) {
+      grew = addPlane(sp.closest, sp.normal);
+    }
+    if (!grew) break;
+    target = projectToPlanes(planes, x);
+  }
+  const Eigen::Vector3d correction = target - x;
+  const double depth = correction.norm();
+  if (!(depth > 0.0)) return 0;
+  const Eigen::Vector3d n = correction / depth;
+  char kind = 1;
+  for (int i = 0; i < planes.count; ++i)
+    if ((x - planes.point[i]).dot(planes.normal[i]) < 0.0) kind = 2;
+  double load = depth;
+  if (m_options.frictionLoad == FrictionLoadKind::Inertial) {
+    const Eigen::Vector3d z = m_freePredicted.row(d).transpose();
+    load = 0.0;
+    for (int i = 0; i < planes.count; ++i)
+      load = std::max(load, thickness - (z - planes.point[i]).dot(planes.normal[i]));
+  }
+  if (applyFriction(s, n, load, target)) kind |= 4;
   return kind;
 }
 
@@ -134,10 +221,14 @@ AvatarContactStats AvatarContacts::addConstraints(const Eigen::MatrixX3d& xFree,
   }
   const int nw = static_cast<int>(watched.size());
   std::vector<char> kind(nw, 0);
+  std::vector<int> added(nw, 0);
   std::vector<Eigen::Vector3d> target(nw);
+  const bool planes = m_options.targets == ContactTargetKind::StepPlanes;
   tbb::parallel_for(0, nw, [&](int i) {
     const int d = watched[i];
-    kind[i] = constrain(m_freeStart.row(d).transpose(), xFree.row(d).transpose(), target[i]);
+    kind[i] = planes ? constrainToPlanes(d, xFree.row(d).transpose(), target[i], added[i])
+                     : constrain(m_freeStart.row(d).transpose(), xFree.row(d).transpose(),
+                                 m_freePredicted.row(d).transpose(), target[i]);
     if (!m_options.holdTargets || !kind[i]) return;
     if (m_heldKind[d]) {
       target[i] = m_held[d];
@@ -149,6 +240,7 @@ AvatarContactStats AvatarContacts::addConstraints(const Eigen::MatrixX3d& xFree,
   });
   AvatarContactStats stats;
   for (int i = 0; i < nw; ++i) {
+    stats.planesAdded += added[i];
     if (!kind[i]) continue;
     acc.add(watched[i], target[i], m_options.weight);
     ++stats.contacts;

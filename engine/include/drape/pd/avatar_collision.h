@@ -1,16 +1,32 @@
 #pragma once
 // Cloth-avatar contact constraints of the PD preview (pd-dd sections 6, 7.3): one position constraint (A_k = I)
 // per garment vertex that is within the contact thickness of the collider, or whose path over the step crossed
-// the collider surface (continuous collision detection), with a lagged Coulomb friction correction of the target.
-//   Proximity: the collision-free position x is projected to closest + thickness * normal (pseudo-normal sign).
-//   CCD:       the segment x_start -> x is tested against the collider triangles it overlaps with the cubic CCD
-//              of collision/ccd.h (static triangle). The earliest triangle crossed from its outer side wins; the
-//              target is its closest point to x plus thickness * its face normal, so a vertex that moved through
-//              the collider within the step is pushed back to the side it came from (no tunnelling).
-//   Friction:  with c = (target - x) . n the normal correction and u = (I - n n^T)(target - x_start) the
-//              tangential displacement of the step, the target moves by -u when |u| <= mu c (static: the vertex
-//              keeps its tangential position) and by -mu c u / |u| otherwise (kinetic: slip reduced by mu c).
+// the collider surface, with a lagged Coulomb friction correction of the target. Two ways to find the target:
+//   StepPlanes: each watched DOF gets, once per step, the half-space {y : (y - p) . n >= thickness}
+//     of the tangent plane at the closest surface point p (outward pseudo-normal n) of its position at the step
+//     start, so the side a vertex came from decides (no tunnelling). In every L-G iteration the collision-free
+//     position x is projected onto the DOF's half-spaces (a continuous function of x, so the L-G iterations
+//     converge as with any fixed PD constraint). The projection is then checked against the real surface: where
+//     it is closer than half the thickness (a concave crease, a large slide, a vertex that started far away), a
+//     half-space at that closest point (or, when the segment start -> target crosses a triangle from outside,
+//     at that triangle: CCD) is added for the rest of the step, up to kMaxPlanes. Without CCD the first
+//     half-space comes from the position itself, not from the start.
+//     Not the default: on the t-shirt, whose stitches drag panels 5-20 cm per step across the body while it
+//     assembles, a tangent plane fixed for the step holds sliding vertices in the air (lifted by d^2 / 2R) and
+//     the garment gains energy until it falls off (measured, issue 6); it suits settled garments and creases.
+//   Reproject (default): the first version. Every iteration projects x to closest + thickness *
+//     normal, or, when the segment x_start -> x crossed a triangle from outside (CCD), to that triangle's
+//     closest point + thickness * face normal. The target jumps when the closest triangle changes: on body
+//     creases it cycles between targets ~15 mm apart and the L-G iterations stall at their cap.
+// Friction: with n the direction of the normal correction, c the normal load as a displacement and u = (I - n
+// n^T)(target - x_start) the tangential displacement of the step, the target moves by -u when |u| <= mu c
+// (static: the vertex keeps its tangential position) and by -mu c u / |u| otherwise (kinetic: slip reduced by mu
+// c). FrictionLoadKind::Inertial: c = the penetration of the inertial prediction z = x + h v + h^2 g into the
+// half-spaces (the impulse of momentum and gravity, m c / h); CollisionFree: c = (target - x) . n (also the
+// cloth's tension pulling it into the body: a stretch left by a landing presses itself on the body and is
+// then held by friction for good).
 #include <Eigen/Core>
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -33,11 +49,15 @@ struct AvatarContactOptions {
   // kinetic friction), and re-projecting it every L-G iteration lets vertices on creases of the body cycle
   // between targets centimetres apart, so the L-G iterations never meet their tolerance.
   bool holdTargets = false;
+  ContactTargetKind targets = ContactTargetKind::Reproject;
+  FrictionLoadKind frictionLoad = FrictionLoadKind::Inertial;
 };
 
 struct AvatarContactStats {
   int contacts = 0;        // constraints added
-  int ccdContacts = 0;     // of which found by CCD (the proximity test alone would have missed or flipped them)
+  int ccdContacts = 0;     // of which found by CCD (the proximity test alone would have missed or flipped them);
+                           // StepPlanes: whose collision-free position is behind its half-space's surface plane
+  int planesAdded = 0;     // StepPlanes: half-spaces added in this call after the real-surface check
   int staticFriction = 0;  // of which held by static friction
 };
 
@@ -45,8 +65,8 @@ class AvatarContacts {
  public:
   AvatarContacts(std::shared_ptr<const collision::AvatarCollider> collider, const AvatarContactOptions& options);
 
-  // Start of a step. start, predicted: |V| x 3 positions at the start of the step and after the inertial
-  // prediction; freeVertices: vertex of each free DOF. Keeps the DOFs whose start is closer to the collider than
+  // Start of a step (forgets the step's half-spaces). start, predicted: |V| x 3 positions at the start of the
+  // step and after the inertial prediction; freeVertices: vertex of each free DOF. Keeps the DOFs whose start is closer to the collider than
   // thickness + margin + 2 |predicted - start| as candidates, and for every other DOF a lower bound of its
   // distance to the collider (internal forces, e.g. stitches closing a seam, can move a vertex much farther than
   // its inertial prediction: addConstraints watches those too).
@@ -63,21 +83,42 @@ class AvatarContacts {
   const AvatarContactOptions& options() const { return m_options; }
 
  private:
+  static constexpr int kMaxPlanes = 3;
+  // Contact half-spaces {y : (y - point[i]) . normal[i] >= thickness} of one DOF within a step.
+  struct StepPlanes {
+    std::array<Eigen::Vector3d, kMaxPlanes> point, normal;  // metres; unit outward
+    int count = 0;
+    bool started = false;  // the half-space of the start position has been looked for
+  };
+
   // Earliest collider triangle crossed from outside by the segment p0 -> p1; -1 when none.
   int firstCrossing(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1) const;
 
   // One watched DOF: a candidate of beginStep or a DOF that moved far (addConstraints). kind: 0 none,
-  // 1 proximity, 2 CCD, +4 held by static friction.
-  char constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, Eigen::Vector3d& target) const;
+  // 1 proximity, 2 CCD, +4 held by static friction. Reproject mode; p0 start, p1 collision-free position, z
+  // inertial prediction.
+  char constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& z,
+                 Eigen::Vector3d& target) const;
+  // StepPlanes mode: the same for free DOF d at collision-free position x (adds to m_planes[d]); added: set to
+  // the number of half-spaces added.
+  char constrainToPlanes(int d, const Eigen::Vector3d& x, Eigen::Vector3d& target, int& added);
+  // x projected into the intersection of the half-spaces (cyclic projections; exact for one plane or two
+  // orthogonal ones, within millimetres of it for the shallow creases of a body).
+  Eigen::Vector3d projectToPlanes(const StepPlanes& planes, Eigen::Vector3d x) const;
+  // Lagged Coulomb friction (header): moves target; c: normal load as a displacement (m), n: unit normal.
+  // Returns true when static.
+  bool applyFriction(const Eigen::Vector3d& start, const Eigen::Vector3d& n, double c, Eigen::Vector3d& target) const;
 
   std::shared_ptr<const collision::AvatarCollider> m_collider;
   AvatarContactOptions m_options;
   std::vector<Eigen::Vector3d> m_faceNormals;  // unit, outward, per collider triangle
   std::vector<int> m_candidates;               // free DOF indices
   Eigen::MatrixX3d m_freeStart;                // start position of every free DOF (|free| x 3)
+  Eigen::MatrixX3d m_freePredicted;            // inertial prediction z of every free DOF (|free| x 3)
   std::vector<float> m_bound;                  // per free DOF: lower bound of its start distance to the collider
   std::vector<Eigen::Vector3d> m_held;         // per free DOF: target held in this step (holdTargets)
   std::vector<char> m_heldKind;                // per free DOF: its kind, 0 = none held
+  std::vector<StepPlanes> m_planes;            // per free DOF: half-spaces of this step (StepPlanes)
 };
 
 }  // namespace drape::pd

@@ -10,6 +10,14 @@ enum class LocalStepKind { GaussSeidel, Jacobi };              // pd-dd section 
 // pd-dd section 6 (eq. 24 + PCG) / plain PCG / the dual solved by conjugate gradients preconditioned by the
 // contact DOFs' block of K, then PCG (contact_solve.h)
 enum class ContactSolveKind { DualThenPcg, Pcg, DualCgThenPcg };
+// How avatar contact targets are found in the L-G iterations of a step (avatar_collision.h): from half-spaces
+// fixed per step (tangent planes at the step start's closest point, added to only where the real surface is
+// violated) / re-projected onto the closest surface point (or CCD crossing) in every iteration (the first version).
+enum class ContactTargetKind { StepPlanes, Reproject };
+// Normal load that bounds lagged Coulomb friction: the inertial prediction's penetration of the contact planes
+// (gravity and momentum only) / the collision-free solve's penetration (also the cloth's own tension pulling it
+// into the body, which lets a stretch, once landed, hold itself in place by friction).
+enum class FrictionLoadKind { Inertial, CollisionFree };
 
 // Allowed range of the principal stretch along one fabric direction (1 = rest length). Inside the range the
 // strain constraint exerts no force (strain limiting); the default [1, 1] pulls towards the rest shape.
@@ -56,6 +64,8 @@ struct PreviewSettings {
   bool contactWarmStart = true;     // start each collision-aware solve from the last contact forces (false: from 0)
   bool ccd = true;                  // vertex paths of the step tested against the avatar triangles (7.3)
   bool holdContactTargets = false;  // avatar contact targets fixed within a step once found (avatar_collision.h)
+  ContactTargetKind contactTargets = ContactTargetKind::Reproject;
+  FrictionLoadKind frictionLoad = FrictionLoadKind::Inertial;
   double friction = 0.0;            // Coulomb coefficient against the avatar (lagged); 0 = frictionless
   bool selfCollision = false;       // cloth-cloth vertex-triangle contact (builds the cloth BVH)
   double selfContactWeight = 1e6;   // w_k of a cloth-cloth constraint, N/m (pd-dd Tab. 1: kappa_s)

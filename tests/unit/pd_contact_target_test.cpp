@@ -1,0 +1,311 @@
+// Avatar contact targets of the PD preview (avatar_collision.h, issue 6): half-spaces fixed per step let the L-G
+// iterations converge where re-projected targets cycle (body creases), and friction bounded by the inertial load
+// does not hold a landing's stretch in place. Each scene runs both ways: the current default and the first
+// version (ContactTargetKind::Reproject with FrictionLoadKind::CollisionFree), so the bounds below are shown to
+// separate the two. (Step half-spaces are not the preview's default: see avatar_collision.h.)
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <vector>
+
+#include "drape/collision/avatar_collider.h"
+#include "drape/geometry/primitives.h"
+#include "drape/pd/avatar_collision.h"
+#include "drape/pd/contact_solve.h"
+#include "drape/pd/grid_cloth.h"
+#include "drape/pd/preview_solver.h"
+
+namespace drape::pd {
+namespace {
+
+Eigen::MatrixX3d rowsOf(const Eigen::VectorXd& flat) {
+  Eigen::MatrixX3d m(flat.size() / 3, 3);
+  for (int v = 0; v < m.rows(); ++v) m.row(v) = flat.segment<3>(3 * v).transpose();
+  return m;
+}
+
+// A closed prism along z (|z| <= halfLength) whose cross-section is the polygon (-w, -base), (w, -base), (w, w),
+// (0, 0), (-w, w): a block with a 90-degree V-shaped valley along the z axis at y = 0. Outward, counter-clockwise.
+TriangleMesh valleyBlock(double w, double base, double halfLength) {
+  const double section[5][2] = {{-w, -base}, {w, -base}, {w, w}, {0.0, 0.0}, {-w, w}};
+  TriangleMesh m;
+  m.vertices.resize(10, 3);
+  for (int k = 0; k < 5; ++k) {
+    m.vertices.row(k) << section[k][0], section[k][1], halfLength;
+    m.vertices.row(k + 5) << section[k][0], section[k][1], -halfLength;
+  }
+  std::vector<Eigen::Vector3i> tris;
+  for (int k = 0; k < 5; ++k) {  // sides
+    const int a = k, b = (k + 1) % 5;
+    tris.emplace_back(a, b, b + 5);
+    tris.emplace_back(a, b + 5, a + 5);
+  }
+  for (int cap = 0; cap < 2; ++cap) {  // fans from the valley vertex (3), which sees the whole section
+    const int o = 5 * cap;
+    tris.emplace_back(o + 3, o + 4, o + 0);
+    tris.emplace_back(o + 3, o + 0, o + 1);
+    tris.emplace_back(o + 3, o + 1, o + 2);
+  }
+  // Orientation: outward from (0, -base / 2, 0), from which the solid is star-shaped.
+  const Eigen::Vector3d inner(0.0, -0.5 * base, 0.0);
+  m.triangles.resize(static_cast<int>(tris.size()), 3);
+  for (int t = 0; t < static_cast<int>(tris.size()); ++t) {
+    Eigen::Vector3i f = tris[t];
+    const Eigen::Vector3d a = m.vertices.row(f[0]), b = m.vertices.row(f[1]), c = m.vertices.row(f[2]);
+    if ((b - a).cross(c - a).dot((a + b + c) / 3.0 - inner) < 0.0) std::swap(f[1], f[2]);
+    m.triangles.row(t) = f.transpose();
+  }
+  return m;
+}
+
+// Edge strains |x_i - x_j| / |r_i - r_j| - 1 of every triangle edge (rest lengths from the material coords).
+std::vector<double> edgeStrains(const newton::ClothModel& model, const Eigen::MatrixX3d& x) {
+  std::vector<double> s;
+  for (int t = 0; t < model.triangles.rows(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = model.triangles(t, k), b = model.triangles(t, (k + 1) % 3);
+      s.push_back((x.row(a) - x.row(b)).norm() / (model.restCoords.row(a) - model.restCoords.row(b)).norm() - 1.0);
+    }
+  return s;
+}
+
+double quantile(std::vector<double> v, double q) {
+  const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * (v.size() - 1)));
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[k];
+}
+
+PreviewSettings firstVersion(PreviewSettings s) {
+  s.contactTargets = ContactTargetKind::Reproject;
+  s.frictionLoad = FrictionLoadKind::CollisionFree;
+  return s;
+}
+
+struct SettleResult {
+  double lateIterations = 0.0;  // mean L-G iterations per step over the second half of the steps
+  int lateCapped = 0;           // steps of the second half that hit the iteration cap
+  double deepest = 0.0;         // most negative signed distance to the collider at the end, metres
+  Eigen::MatrixX3d x;           // final positions
+};
+
+SettleResult settle(const newton::ClothModel& model, const PreviewSettings& s,
+                    const std::shared_ptr<const collision::AvatarCollider>& collider, int steps) {
+  PreviewSolver solver(model, s, collider);
+  SettleResult out;
+  long late = 0;
+  for (int i = 0; i < steps; ++i) {
+    const PreviewReport r = solver.step();
+    EXPECT_NE(r.status, PreviewStatus::Diverged) << "step " << i;
+    if (std::getenv("DRAPE_TEST_VERBOSE"))
+      std::printf("  step %3d: L-G %2d residual %.1e contacts %d (ccd %d, static %d) churn %d\n", i, r.iterations,
+                  r.residual, r.contacts, r.ccdContacts, r.staticFriction, r.contactChurn);
+    if (i >= steps / 2) {
+      late += r.iterations;
+      out.lateCapped += r.iterations >= s.maxIterations;
+    }
+  }
+  out.lateIterations = static_cast<double>(late) / (steps - steps / 2);
+  out.x = rowsOf(solver.positions());
+  for (int v = 0; v < out.x.rows(); ++v)
+    out.deepest = std::min(out.deepest, collider->signedDistance(out.x.row(v).transpose()));
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// 1. Half-spaces of one DOF, checked against closed forms.
+
+// A box with its top face at y = 0 (x, z in [-0.5, 0.5]).
+std::shared_ptr<const collision::AvatarCollider> slab() {
+  return std::make_shared<const collision::AvatarCollider>(
+      makeBox(Eigen::Vector3d(-0.5, -0.2, -0.5), Eigen::Vector3d(0.5, 0.0, 0.5)));
+}
+
+// One DOF (vertex 0 of a 1-vertex model) from start with prediction z, constrained at collision-free x.
+ContactSet oneContact(AvatarContacts& contacts, const Eigen::Vector3d& start, const Eigen::Vector3d& z,
+                      const Eigen::Vector3d& x, AvatarContactStats* stats = nullptr) {
+  contacts.beginStep(start.transpose(), z.transpose(), {0});
+  ContactAccumulator acc(1);
+  const AvatarContactStats st = contacts.addConstraints(x.transpose(), acc);
+  if (stats) *stats = st;
+  return acc.merged();
+}
+
+TEST(PdContactTarget, PlaneTargetIsTheProjectionOntoTheStartHalfSpace) {
+  AvatarContactOptions o;
+  o.targets = ContactTargetKind::StepPlanes;
+  o.thickness = 0.004;
+  AvatarContacts contacts(slab(), o);
+  const Eigen::Vector3d start(0.1, 0.01, 0.2);
+  // Below the surface: lifted straight up to the thickness, x and z kept.
+  ContactSet c = oneContact(contacts, start, start, Eigen::Vector3d(0.12, -0.003, 0.19));
+  ASSERT_EQ(c.size(), 1);
+  EXPECT_LT((c.targets.row(0) - Eigen::RowVector3d(0.12, 0.004, 0.19)).norm(), 1e-12);
+  // Above the thickness: no constraint.
+  EXPECT_EQ(oneContact(contacts, start, start, Eigen::Vector3d(0.12, 0.0041, 0.19)).size(), 0);
+  // Through the slab and out below (0.3 m in one step): the start's side holds; reported as a CCD contact.
+  AvatarContactStats st;
+  c = oneContact(contacts, start, start, Eigen::Vector3d(0.1, -0.29, 0.2), &st);
+  ASSERT_EQ(c.size(), 1);
+  EXPECT_NEAR(c.targets(0, 1), 0.004, 1e-12);
+  EXPECT_EQ(st.ccdContacts, 1);
+  // Continuity across the slab's edge (the closest feature changes there, the start's half-space does not).
+  const Eigen::Vector3d edgeStart(0.499, 0.01, 0.0);
+  const ContactSet a = oneContact(contacts, edgeStart, edgeStart, Eigen::Vector3d(0.4999, -0.001, 0.0));
+  const ContactSet b = oneContact(contacts, edgeStart, edgeStart, Eigen::Vector3d(0.5001, -0.001, 0.0));
+  ASSERT_EQ(a.size(), 1);
+  ASSERT_EQ(b.size(), 1);
+  EXPECT_LT((a.targets.row(0) - b.targets.row(0)).norm(), 1e-3);
+}
+
+TEST(PdContactTarget, CreaseTargetLiesInBothHalfSpaces) {
+  // A vertex in the valley's crease, pushed down into it: the first version jumps to one side's surface (inside
+  // the other side's thickness); the half-spaces put it thickness away from both sides.
+  auto collider = std::make_shared<const collision::AvatarCollider>(valleyBlock(0.3, 0.2, 0.3));
+  AvatarContactOptions o;
+  o.targets = ContactTargetKind::StepPlanes;
+  o.thickness = 0.004;
+  o.margin = 0.02;
+  AvatarContacts contacts(collider, o);
+  const Eigen::Vector3d start(0.0005, 0.01, 0.0), x(0.0, -0.002, 0.0);
+  AvatarContactStats st;
+  const ContactSet c = oneContact(contacts, start, start, x, &st);
+  ASSERT_EQ(c.size(), 1);
+  const Eigen::Vector3d t = c.targets.row(0).transpose();
+  // Distance to each side (planes y = x and y = -x through the crease).
+  const double left = (t.y() + t.x()) / std::sqrt(2.0), right = (t.y() - t.x()) / std::sqrt(2.0);
+  std::printf("[ PdContactTarget ] crease target (%.5f, %.5f): %.2f mm and %.2f mm from the sides, %d half-spaces "
+              "added\n", t.x(), t.y(), 1e3 * left, 1e3 * right, st.planesAdded);
+  EXPECT_GT(left, 0.5 * o.thickness);
+  EXPECT_GT(right, 0.5 * o.thickness);
+  EXPECT_GE(st.planesAdded, 1);
+  // The first version's target for the same DOF: on one side only.
+  AvatarContactOptions old = o;
+  old.targets = ContactTargetKind::Reproject;
+  AvatarContacts reproject(collider, old);
+  const Eigen::Vector3d t0 = oneContact(reproject, start, start, x).targets.row(0).transpose();
+  const double left0 = (t0.y() + t0.x()) / std::sqrt(2.0), right0 = (t0.y() - t0.x()) / std::sqrt(2.0);
+  EXPECT_LT(std::min(left0, right0), 0.5 * o.thickness);
+}
+
+TEST(PdContactTarget, FrictionLoadIsTheInertialPenetration) {
+  // Resting 4 mm above the slab, gravity alone predicts 0.7 mm of sinking (z), while the cloth's tension pulls
+  // the collision-free position 10 mm into the body and 3 mm sideways (x).
+  const double h = 1.0 / 120.0, g = 9.81, mu = 0.4;
+  AvatarContactOptions o;
+  o.targets = ContactTargetKind::StepPlanes;
+  o.thickness = 0.004;
+  o.friction = mu;
+  const Eigen::Vector3d start(0.0, 0.004, 0.0), z(0.0, 0.004 - h * h * g, 0.0), x(0.003, -0.006, 0.0);
+  // Inertial load c = h^2 g = 0.68 mm: mu c = 0.27 mm < 3 mm, kinetic: the slip is shortened by mu c.
+  AvatarContacts inertial(slab(), o);
+  AvatarContactStats st;
+  ContactSet c = oneContact(inertial, start, z, x, &st);
+  ASSERT_EQ(c.size(), 1);
+  EXPECT_EQ(st.staticFriction, 0);
+  EXPECT_NEAR(c.targets(0, 0), 0.003 - mu * h * h * g, 1e-12);
+  EXPECT_NEAR(c.targets(0, 1), 0.004, 1e-12);
+  EXPECT_NEAR(c.targets(0, 2), 0.0, 1e-12);
+  // The collision-free load c = 10 mm (mu c = 4 mm >= 3 mm) holds it: static, back to the start's x.
+  o.frictionLoad = FrictionLoadKind::CollisionFree;
+  AvatarContacts collisionFree(slab(), o);
+  c = oneContact(collisionFree, start, z, x, &st);
+  ASSERT_EQ(c.size(), 1);
+  EXPECT_EQ(st.staticFriction, 1);
+  EXPECT_NEAR(c.targets(0, 0), 0.0, 1e-12);
+  // At rest with no tangential pull, the inertial load holds it too (static, mu c > 0 = |u|).
+  c = oneContact(inertial, start, z, Eigen::Vector3d(0.0, 0.003, 0.0), &st);
+  ASSERT_EQ(c.size(), 1);
+  EXPECT_EQ(st.staticFriction, 1);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// 2. L-G convergence: a cloth dropped into the valley's 90-degree crease.
+
+newton::ClothModel clothOverTheValley() {
+  GridClothOptions o;
+  o.nx = o.ny = 25;
+  o.width = o.height = 0.4;
+  o.horizontal = true;
+  o.elevation = 0.22;  // above the valley's rims at the cloth's edges (x = +-0.2: y = 0.2)
+  o.pinTopCorners = false;
+  return makeGridCloth(o);
+}
+
+TEST(PdContactTarget, ClothInACreaseConvergesWellBelowTheIterationCap) {
+  const newton::ClothModel model = clothOverTheValley();
+  auto collider = std::make_shared<const collision::AvatarCollider>(valleyBlock(0.3, 0.2, 0.3));
+  PreviewSettings s;
+  s.contactTargets = ContactTargetKind::StepPlanes;
+  s.domains = 2;
+  s.threads = 2;
+  const int steps = 120;
+  const SettleResult now = settle(model, s, collider, steps);
+  const SettleResult before = settle(model, firstVersion(s), collider, steps);
+  std::printf("[ PdContactTarget ] valley crease, steps %d-%d: L-G iterations per step %.1f (%d at the cap of %d) "
+              "with step half-spaces, %.1f (%d) re-projected; deepest %.2f mm vs %.2f mm\n", steps / 2, steps,
+              now.lateIterations, now.lateCapped, s.maxIterations, before.lateIterations, before.lateCapped,
+              1e3 * now.deepest, 1e3 * before.deepest);
+  // Landed: the crease holds the cloth (it sits in the valley, not through it).
+  EXPECT_LT(now.x.col(1).minCoeff(), 0.02);
+  EXPECT_GT(now.deepest, -s.contactThickness);
+  // Re-projected targets keep every late step at the cap; fixed half-spaces leave most steps below it.
+  EXPECT_GT(before.lateCapped, (steps - steps / 2) * 9 / 10);
+  EXPECT_LT(now.lateIterations, 0.8 * before.lateIterations);
+  EXPECT_LT(now.lateCapped, (steps - steps / 2) / 2);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// 3. Friction: the bench's tablecloth (cotton shirting, 6000 / 4000 N/m) at its 1.5 cm spacing, dropped 0.2 m onto
+// a sphere of radius 0.3 m, mu = 0.4.
+
+TEST(PdContactTarget, FrictionDoesNotLockTheLandingStretch) {
+  GridClothOptions o;
+  o.nx = o.ny = 67;
+  o.width = o.height = 1.0;
+  o.horizontal = true;
+  const double radius = 0.3;
+  o.elevation = radius + 0.2;
+  o.pinTopCorners = false;
+  newton::ClothModel model = makeGridCloth(o);
+  model.fabrics[0].stretchWarp = 6000.0;
+  model.fabrics[0].stretchWeft = 4000.0;
+  model.fabrics[0].shear = 40.0;
+  auto collider = std::make_shared<const collision::AvatarCollider>(makeIcosphere(Eigen::Vector3d::Zero(), radius, 5));
+  PreviewSettings s;
+  s.domains = 2;
+  s.threads = 2;
+  s.friction = 0.4;
+  const int steps = 100;
+  const SettleResult now = settle(model, s, collider, steps);
+  const SettleResult before = settle(model, firstVersion(s), collider, steps);
+  const auto report = [&](const char* name, const SettleResult& r) {
+    const std::vector<double> e = edgeStrains(model, r.x);
+    const int centre = 33 * 67 + 33;
+    std::printf("[ PdContactTarget ] %-22s edge strain p50 %.4f p95 %.4f p99 %.4f max %.4f; centre vertex at "
+                "(%.4f, %.4f, %.4f); lowest y %.4f\n", name, quantile(e, 0.5), quantile(e, 0.95), quantile(e, 0.99),
+                quantile(e, 1.0), r.x(centre, 0), r.x(centre, 1), r.x(centre, 2), r.x.col(1).minCoeff());
+    return quantile(e, 0.95);
+  };
+  const double p95 = report("friction (inertial)", now);
+  const double p95Before = report("friction (first)", before);
+  // Measured (2 threads): p95 3.1 % vs 5.8 %, p99 5.2 % vs 10.8 %, max 7.0 % vs 16.6 %. The rest of the stretch
+  // is the landing's, which the preview's capped L-G iterations leave in a stiff fabric (frictionless, the
+  // cloth slides off the sphere instead).
+  EXPECT_LT(p95, 0.04);
+  EXPECT_GT(p95Before, 0.04);  // the bound separates the two
+  EXPECT_LT(p95, 0.7 * p95Before);
+  // Still on the sphere: the centre vertex on its top (at the thickness), not slid sideways.
+  const int centre = 33 * 67 + 33;
+  EXPECT_NEAR(now.x.row(centre).norm(), radius + s.contactThickness, 0.003);
+  EXPECT_LT(std::hypot(now.x(centre, 0), now.x(centre, 2)), 0.02);
+  EXPECT_GT(now.deepest, -s.contactThickness);
+}
+
+}  // namespace
+}  // namespace drape::pd
