@@ -9,6 +9,7 @@
 #include "drape/garment/garment_builder.h"
 #include "drape/pattern/edge_curve.h"
 #include "drape/scene/pins.h"
+#include "drape/sim/simulation.h"
 
 namespace drape::app {
 namespace {
@@ -47,12 +48,13 @@ void describePattern(const Pattern& pattern, std::ostream& out) {
 
 void describeScene(const Scene& scene, std::ostream& out) {
   describePattern(scene.pattern, out);
-  const MeshingOptions meshing{scene.settings.number("mesh.target_edge_length")};
+  const MeshingOptions meshing = meshingOptions(scene);
   Diagnostics diagnostics;
   const Garment garment = buildGarment(scene.pattern, meshing, &diagnostics);
   const auto pinned = resolvePins(scene, garment);
   out << "garment (target edge " << meshing.targetEdgeLength << " m):\n  vertices: " << garment.vertexCount()
       << "\n  triangles: " << garment.triangleCount() << "\n  stitch vertex pairs: " << garment.stitchPairs.size()
+      << "\n  edge stitches (non-conforming seams): " << garment.edgeStitches.size()
       << "\n  pinned vertices: " << pinned.size() << "\n  bounding box: " << formatBox(boundsOf(garment.positions))
       << "\n";
   out << "fabric: " << scene.fabric.name << " (stretch " << scene.fabric.stretchWarp << "/" << scene.fabric.stretchWeft

@@ -23,7 +23,7 @@ namespace {
 // Runs the scene's stage (none: the placed garment) and returns what to draw.
 Snapshot stageSnapshot(Scene scene, std::ostream& out) {
   if (scene.settings.text("solver.stage") == "none") {
-    const Garment garment = buildGarment(scene.pattern, {scene.settings.number("mesh.target_edge_length")});
+    const Garment garment = buildGarment(scene.pattern, meshingOptions(scene));
     resolvePins(scene, garment);  // validates the pins
     return makeSnapshot(scene, garment, garment.positions);
   }

@@ -54,7 +54,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
   if (stage == "none") {
     Diagnostics diagnostics;
     const Garment garment =
-        buildGarment(scene.pattern, MeshingOptions{scene.settings.number("mesh.target_edge_length")}, &diagnostics);
+        buildGarment(scene.pattern, meshingOptions(scene), &diagnostics);
     const auto pinned = resolvePins(scene, garment);
     exportGarment(garment, garment.positions, options.output);
     if (!options.png.empty())

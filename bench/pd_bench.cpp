@@ -28,6 +28,7 @@
 #include "drape/pd/preview_solver.h"
 #include "drape/scene/pins.h"
 #include "drape/scene/scene.h"
+#include "drape/sim/simulation.h"
 #include "drape/sim/snapshot_builder.h"
 #include "sim/cloth_model_builder.h"
 
@@ -227,7 +228,7 @@ void interactiveTable(const std::string& sceneFile, int steps, double cap, const
   SceneRequest request;
   request.input = sceneFile;
   const Scene scene = loadScene(request);
-  const Garment garment = buildGarment(scene.pattern, {scene.settings.number("mesh.target_edge_length")});
+  const Garment garment = buildGarment(scene.pattern, meshingOptions(scene));
   const std::vector<int> pinned = resolvePins(scene, garment);
   const newton::ClothModel model = buildClothModel(scene, garment, pinned);
   const TriangleMesh colliderMesh = mergedColliders(scene);

@@ -52,16 +52,19 @@ void checkStitchSide(const Pattern& pattern, int s, const StitchSide& side, cons
   throw InputError(msg.str());
 }
 
-// Number of segments for every edge (flat index): round(length / target), at
-// least 1; all edges joined by stitches (directly or through a chain) share the
-// count of the longest among them.
-std::vector<int> segmentCounts(const Pattern& pattern, const EdgeIndexer& index, double targetFileUnits) {
-  std::vector<double> length(index.total);
+// Number of segments for every edge (flat index): round(length / target of its
+// panel), at least 1; with conforming seams, all edges joined by stitches
+// (directly or through a chain) share the largest count among them.
+std::vector<int> segmentCounts(const Pattern& pattern, const EdgeIndexer& index,
+                               const std::vector<double>& targetFileUnits, bool conforming) {
+  std::vector<int> own(index.total);
   for (int p = 0; p < static_cast<int>(pattern.panels.size()); ++p) {
     for (int e = 0; e < static_cast<int>(pattern.panels[p].edges.size()); ++e) {
-      length[index(p, e)] = edgeLength(pattern.panels[p], e);
+      const double segments = std::round(edgeLength(pattern.panels[p], e) / targetFileUnits[p]);
+      own[index(p, e)] = static_cast<int>(std::max(1.0, segments));
     }
   }
+  if (!conforming) return own;
   std::vector<int> parent(index.total);
   std::iota(parent.begin(), parent.end(), 0);
   for (const Stitch& s : pattern.stitches) {
@@ -69,16 +72,13 @@ std::vector<int> segmentCounts(const Pattern& pattern, const EdgeIndexer& index,
     const int b = findRoot(parent, index(s.b.panel, s.b.edge));
     parent[a] = b;
   }
-  std::vector<double> groupLength(index.total, 0.0);
+  std::vector<int> groupCount(index.total, 0);
   for (int i = 0; i < index.total; ++i) {
     const int r = findRoot(parent, i);
-    groupLength[r] = std::max(groupLength[r], length[i]);
+    groupCount[r] = std::max(groupCount[r], own[i]);
   }
   std::vector<int> counts(index.total);
-  for (int i = 0; i < index.total; ++i) {
-    const double segments = std::round(groupLength[findRoot(parent, i)] / targetFileUnits);
-    counts[i] = static_cast<int>(std::max(1.0, segments));
-  }
+  for (int i = 0; i < index.total; ++i) counts[i] = groupCount[findRoot(parent, i)];
   return counts;
 }
 
@@ -115,6 +115,22 @@ std::vector<Eigen::Vector2d> sampleOutline(const Pattern& pattern, int p, const 
   return outline;
 }
 
+// Non-conforming seam (pd-dd section 4.4): every point of the side with more points (fine) is sewn to the point
+// at the same arc-length fraction of the other side (coarse), on one of its segments. Both sides are sampled evenly
+// by arc length; the sides run in opposite directions along the seam unless rightWrong.
+void sewToEdges(const std::vector<int>& fine, const std::vector<int>& coarse, bool reversed,
+                std::vector<GarmentEdgeStitch>& out) {
+  const int nf = static_cast<int>(fine.size()) - 1, nc = static_cast<int>(coarse.size()) - 1;
+  for (int k = 0; k <= nf; ++k) {
+    const double s = static_cast<double>(reversed ? nf - k : k) / nf * nc;  // position along coarse, in segments
+    const int seg = std::clamp(static_cast<int>(std::floor(s)), 0, nc - 1);
+    const double t = std::clamp(s - seg, 0.0, 1.0);
+    const int a = coarse[seg], b = coarse[seg + 1];
+    if (fine[k] == a || fine[k] == b) continue;  // a corner shared by both sides (a dart's tip): already joined
+    out.push_back({fine[k], a, b, t});
+  }
+}
+
 }  // namespace
 
 // GarmentCode (pygarment Panel.assembly) writes the rotation as scipy's
@@ -147,8 +163,28 @@ Garment buildGarment(const Pattern& pattern, const MeshingOptions& options, Diag
     checkStitchSide(pattern, static_cast<int>(s), pattern.stitches[s].b, "b");
   }
 
+  // Target edge length per panel, metres.
+  std::vector<double> panelTarget(pattern.panels.size(), target);
+  for (const auto& [name, length] : options.panelTargetEdgeLength) {
+    const auto it = std::find_if(pattern.panels.begin(), pattern.panels.end(),
+                                 [&name](const Panel& panel) { return panel.name == name; });
+    std::ostringstream msg;
+    if (it == pattern.panels.end()) {
+      msg << pattern.source << ": target edge length given for panel '" << name << "', which the pattern lacks";
+      throw InputError(msg.str());
+    }
+    if (!std::isfinite(length) || length <= 0.0) {
+      msg << pattern.source << ": panel '" << name << "': target edge length must be positive (got " << length
+          << " m)";
+      throw InputError(msg.str());
+    }
+    panelTarget[it - pattern.panels.begin()] = length;
+  }
+  std::vector<double> panelTargetFileUnits(panelTarget.size());
+  for (size_t p = 0; p < panelTarget.size(); ++p) panelTargetFileUnits[p] = panelTarget[p] * pattern.unitsInMeter;
+
   const EdgeIndexer index(pattern);
-  const std::vector<int> counts = segmentCounts(pattern, index, target * pattern.unitsInMeter);
+  const std::vector<int> counts = segmentCounts(pattern, index, panelTargetFileUnits, options.conformingSeams);
   const double toMetres = 1.0 / pattern.unitsInMeter;
 
   // Mesh every panel (in metres) and stack the results.
@@ -159,7 +195,7 @@ Garment buildGarment(const Pattern& pattern, const MeshingOptions& options, Diag
   for (int p = 0; p < panelCount; ++p) {
     std::vector<Eigen::Vector2d> outline = sampleOutline(pattern, p, counts, index, edgePoints[p]);
     for (Eigen::Vector2d& q : outline) q *= toMetres;
-    meshes[p] = meshPanel(outline, target, panelContext(pattern, p));
+    meshes[p] = meshPanel(outline, panelTarget[p], panelContext(pattern, p));
     vertexTotal += meshes[p].vertices.rows();
     triangleTotal += meshes[p].triangles.rows();
   }
@@ -199,6 +235,7 @@ Garment buildGarment(const Pattern& pattern, const MeshingOptions& options, Diag
 
   // Stitch pairs: rightWrong false pairs a's k-th point with b's (n-k)-th
   // (edges run in opposite directions along the seam), true pairs k with k.
+  // Sides sampled with different counts (non-conforming) become edge stitches.
   for (size_t s = 0; s < pattern.stitches.size(); ++s) {
     const Stitch& st = pattern.stitches[s];
     const std::vector<int>& a = g.edgeVertices[st.a.panel][st.a.edge];
@@ -206,9 +243,16 @@ Garment buildGarment(const Pattern& pattern, const MeshingOptions& options, Diag
     GarmentStitch gs;
     gs.stitch = static_cast<int>(s);
     gs.firstPair = static_cast<int>(g.stitchPairs.size());
-    gs.pairCount = static_cast<int>(a.size());
-    const int n = static_cast<int>(a.size()) - 1;
-    for (int k = 0; k <= n; ++k) g.stitchPairs.emplace_back(a[k], st.rightWrong ? b[k] : b[n - k]);
+    gs.firstEdgeStitch = static_cast<int>(g.edgeStitches.size());
+    if (a.size() == b.size()) {
+      gs.pairCount = static_cast<int>(a.size());
+      const int n = static_cast<int>(a.size()) - 1;
+      for (int k = 0; k <= n; ++k) g.stitchPairs.emplace_back(a[k], st.rightWrong ? b[k] : b[n - k]);
+    } else {
+      const bool aFiner = a.size() > b.size();
+      sewToEdges(aFiner ? a : b, aFiner ? b : a, !st.rightWrong, g.edgeStitches);
+      gs.edgeStitchCount = static_cast<int>(g.edgeStitches.size()) - gs.firstEdgeStitch;
+    }
     g.stitches.push_back(gs);
   }
   if (diagnostics) {

@@ -53,8 +53,10 @@ NewtonSolver::NewtonSolver(ClothModel model, NewtonSettings settings, std::vecto
   bending->setExactHessian(!m_settings.projectHessians);
   std::vector<Hinge> hinges = bending->hinges();
   if (!bending->empty()) m_energies.push_back(std::move(bending));
-  if (!m_model.stitches.empty())
-    m_energies.push_back(std::make_unique<StitchSprings>(m_model.stitches, m_settings.stitchStiffness));
+  validateStitches(m_model);
+  if (!m_model.stitches.empty() || !m_model.edgeStitches.empty())
+    m_energies.push_back(
+        std::make_unique<StitchSprings>(m_model.stitches, m_settings.stitchStiffness, m_model.edgeStitches));
   if (!m_model.pinned.empty()) {
     std::vector<Eigen::Vector3d> targets = m_model.pinTargets;
     if (targets.empty())

@@ -4,39 +4,52 @@
 
 namespace drape::newton {
 
-StitchSprings::StitchSprings(std::vector<std::pair<int, int>> pairs, double stiffness)
-    : m_pairs(std::move(pairs)), m_stiffness(stiffness) {}
+StitchSprings::StitchSprings(std::vector<std::pair<int, int>> pairs, double stiffness,
+                             const std::vector<EdgeStitch>& edges)
+    : m_stiffness(stiffness) {
+  m_stencils.reserve(pairs.size() + edges.size());
+  for (auto [i, j] : pairs)
+    if (i != j) m_stencils.push_back(Stencil{{i, j, 0}, {1.0, -1.0, 0.0}, 2});  // (v, v): no energy, skipped
+  for (const EdgeStitch& e : edges) m_stencils.push_back(Stencil{{e.vertex, e.a, e.b}, {1.0, -(1.0 - e.t), -e.t}, 3});
+}
+
+Eigen::Vector3d StitchSprings::constraint(const Stencil& s, const Eigen::VectorXd& x) const {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int k = 0; k < s.size; ++k) c += s.w[k] * x.segment<3>(3 * s.vertices[k]);
+  return c;
+}
 
 double StitchSprings::value(const Eigen::VectorXd& x) const {
   double sum = 0.0;
-  for (auto [i, j] : m_pairs) sum += (x.segment<3>(3 * i) - x.segment<3>(3 * j)).squaredNorm();
+  for (const Stencil& s : m_stencils) sum += constraint(s, x).squaredNorm();
   return 0.5 * m_stiffness * sum;
 }
 
+// dE/dx_k = k w_k c.
 void StitchSprings::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
-  for (auto [i, j] : m_pairs) {
-    Eigen::Vector3d f = m_stiffness * (x.segment<3>(3 * i) - x.segment<3>(3 * j));
-    g.segment<3>(3 * i) += f;
-    g.segment<3>(3 * j) -= f;
+  for (const Stencil& s : m_stencils) {
+    const Eigen::Vector3d f = m_stiffness * constraint(s, x);
+    for (int k = 0; k < s.size; ++k) g.segment<3>(3 * s.vertices[k]) += s.w[k] * f;
   }
 }
 
+// d2E/dx_k dx_l = k w_k w_l I (constant).
 void StitchSprings::addHessian(const Eigen::VectorXd&, BlockMatrix& h) const {
-  Eigen::Matrix3d k = m_stiffness * Eigen::Matrix3d::Identity();
-  for (auto [i, j] : m_pairs) {
-    h.addBlock(i, i, k);
-    h.addBlock(j, j, k);
-    h.addBlock(i, j, -k);
-  }
+  for (const Stencil& s : m_stencils)
+    for (int k = 0; k < s.size; ++k)
+      for (int l = k; l < s.size; ++l)
+        h.addBlock(s.vertices[k], s.vertices[l], (m_stiffness * s.w[k] * s.w[l]) * Eigen::Matrix3d::Identity());
 }
 
 void StitchSprings::addCouplings(std::vector<std::pair<int, int>>& pairs) const {
-  pairs.insert(pairs.end(), m_pairs.begin(), m_pairs.end());
+  for (const Stencil& s : m_stencils)
+    for (int k = 0; k < s.size; ++k)
+      for (int l = k + 1; l < s.size; ++l) pairs.emplace_back(s.vertices[k], s.vertices[l]);
 }
 
 double StitchSprings::maxGap(const Eigen::VectorXd& x) const {
   double gap = 0.0;
-  for (auto [i, j] : m_pairs) gap = std::max(gap, (x.segment<3>(3 * i) - x.segment<3>(3 * j)).norm());
+  for (const Stencil& s : m_stencils) gap = std::max(gap, constraint(s, x).norm());
   return gap;
 }
 

@@ -11,6 +11,13 @@ namespace drape::pd {
 std::vector<int> partitionTriangles(const Eigen::MatrixX3i& triangles, int vertexCount,
                                     const std::vector<std::pair<int, int>>& stitches, int domains,
                                     unsigned seed) {
+  return partitionTriangles(triangles, vertexCount, stitches, {}, domains, seed);
+}
+
+std::vector<int> partitionTriangles(const Eigen::MatrixX3i& triangles, int vertexCount,
+                                    const std::vector<std::pair<int, int>>& stitches,
+                                    const std::vector<newton::EdgeStitch>& edgeStitches, int domains,
+                                    unsigned seed) {
   const int nt = static_cast<int>(triangles.rows());
   std::vector<int> part(nt, 0);
   domains = std::clamp(domains, 1, std::max(nt, 1));
@@ -18,27 +25,41 @@ std::vector<int> partitionTriangles(const Eigen::MatrixX3i& triangles, int verte
 
   // Adjacency: triangles sharing an edge, and triangles touching the two ends of a stitch.
   std::vector<std::vector<int>> adj(nt);
+  auto link = [&adj](int s, int t) {
+    if (s >= 0 && t >= 0 && s != t) {
+      adj[s].push_back(t);
+      adj[t].push_back(s);
+    }
+  };
   std::map<std::pair<int, int>, int> firstOnEdge;
+  std::map<std::pair<int, int>, int> secondOnEdge;  // only filled when edge stitches need it
   for (int t = 0; t < nt; ++t)
     for (int k = 0; k < 3; ++k) {
       const int a = triangles(t, k), b = triangles(t, (k + 1) % 3);
       const auto key = std::make_pair(std::min(a, b), std::max(a, b));
       const auto [it, inserted] = firstOnEdge.emplace(key, t);
       if (!inserted && it->second != t) {
-        adj[t].push_back(it->second);
-        adj[it->second].push_back(t);
+        link(t, it->second);
+        if (!edgeStitches.empty()) secondOnEdge.emplace(key, t);
       }
     }
-  if (!stitches.empty()) {
+  if (!stitches.empty() || !edgeStitches.empty()) {
     std::vector<int> someTriangle(vertexCount, -1);
     for (int t = 0; t < nt; ++t)
       for (int k = 0; k < 3; ++k) someTriangle[triangles(t, k)] = t;
-    for (const auto& [a, b] : stitches) {
-      const int ta = someTriangle[a], tb = someTriangle[b];
-      if (ta >= 0 && tb >= 0 && ta != tb) {
-        adj[ta].push_back(tb);
-        adj[tb].push_back(ta);
+    for (const auto& [a, b] : stitches) link(someTriangle[a], someTriangle[b]);
+    for (const newton::EdgeStitch& e : edgeStitches) {
+      const int tv = someTriangle[e.vertex];
+      const auto key = std::make_pair(std::min(e.a, e.b), std::max(e.a, e.b));
+      const auto first = firstOnEdge.find(key);
+      if (first == firstOnEdge.end()) {
+        link(tv, someTriangle[e.a]);
+        link(tv, someTriangle[e.b]);
+        continue;
       }
+      link(tv, first->second);
+      const auto second = secondOnEdge.find(key);
+      if (second != secondOnEdge.end()) link(tv, second->second);
     }
   }
   std::vector<idx_t> xadj(nt + 1, 0), adjncy;

@@ -90,12 +90,7 @@ PdSystem::PdSystem(const newton::ClothModel& model, const PreviewSettings& setti
         throw InputError("cloth model: triangle " + std::to_string(t) + ": vertex " +
                          std::to_string(model.triangles(t, k)) + " out of range (" + std::to_string(nv) +
                          " vertices)");
-  for (size_t s = 0; s < model.stitches.size(); ++s) {
-    const auto [a, b] = model.stitches[s];
-    if (a < 0 || a >= nv || b < 0 || b >= nv || a == b)
-      throw InputError("cloth model: stitch " + std::to_string(s) + ": vertices (" + std::to_string(a) + ", " +
-                       std::to_string(b) + ") invalid (" + std::to_string(nv) + " vertices)");
-  }
+  newton::validateStitches(model);
   if (!model.pinTargets.empty() && model.pinTargets.size() != model.pinned.size())
     throw InputError("cloth model: " + std::to_string(model.pinTargets.size()) + " pin targets for " +
                      std::to_string(model.pinned.size()) + " pins");
@@ -200,11 +195,24 @@ PdSystem::PdSystem(const newton::ClothModel& model, const PreviewSettings& setti
     for (int k = 0; k < 3; ++k) someTriangle[model.triangles(t, k)] = t;
   const double stitchWeight = settings.stitchWeight > 0.0 ? settings.stitchWeight : 10.0 * maxStretch;
   for (const auto& [a, b] : model.stitches) {
+    if (a == b) continue;  // a dart tip sewn to itself: no term
     Stencil st;
     st.size = 2;
     st.ownerTriangle = someTriangle[a];
     st.vertices = {a, b, 0, 0};
     st.q.topLeftCorner<2, 2>() << stitchWeight, -stitchWeight, -stitchWeight, stitchWeight;
+    m_stencils.push_back(st);
+  }
+  // Edge stitches (pd-dd section 4.4): constraint A = [1, -(1 - t), -t] on (v, a, b), q = w A^T A. Owned by a
+  // triangle of the edge, so that only v is shared with another domain when the seam crosses domains.
+  for (const newton::EdgeStitch& e : model.edgeStitches) {
+    Stencil st;
+    st.size = 3;
+    const auto it = edgeTriangles.find({std::min(e.a, e.b), std::max(e.a, e.b)});
+    st.ownerTriangle = it != edgeTriangles.end() ? it->second.front().first : someTriangle[e.a];
+    st.vertices = {e.vertex, e.a, e.b, 0};
+    const Eigen::Vector3d a(1.0, -(1.0 - e.t), -e.t);
+    st.q.topLeftCorner<3, 3>() = stitchWeight * a * a.transpose();
     m_stencils.push_back(st);
   }
 

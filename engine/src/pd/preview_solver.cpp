@@ -107,7 +107,7 @@ PreviewSolver::PreviewSolver(const newton::ClothModel& model, const PreviewSetti
   im.domains = std::clamp(requested, 1, std::max(im.system->triangleCount(), 1));
   im.arena->execute([&] {
     im.triangleDomain =
-        partitionTriangles(model.triangles, nv, model.stitches, im.domains, settings.seed);
+        partitionTriangles(model.triangles, nv, model.stitches, model.edgeStitches, im.domains, settings.seed);
     if (settings.globalSolver == GlobalSolverKind::Monolithic)
       im.global = std::make_unique<MonolithicSolver>(im.system->matrix());
     else
@@ -119,7 +119,8 @@ PreviewSolver::PreviewSolver(const newton::ClothModel& model, const PreviewSetti
   if (im.collider)
     im.avatar = std::make_unique<AvatarContacts>(
         im.collider, AvatarContactOptions{settings.contactThickness, settings.contactMargin, settings.contactWeight,
-                                          settings.friction, settings.ccd, settings.holdContactTargets});
+                                          settings.friction, settings.ccd, settings.holdContactTargets,
+                                          settings.contactTargets, settings.frictionLoad});
   if (settings.selfCollision)
     im.cloth = std::make_unique<ClothContacts>(
         model.triangles, nv, model.stitches, im.system->dofOfVertex(),

@@ -21,6 +21,8 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"fabric.damping", T::Number, "", "", "override: stretch/bend dissipation factor", 0, 10},
       {"mesh.target_edge_length", T::Number, "0.01", "m", "target triangle edge length of the garment mesh", 1e-4,
        1.0},
+      {"mesh.conforming_seams", T::Boolean, "true", "", "stitched edges sampled alike and sewn vertex to vertex; "
+       "false: each edge at its own spacing, seams sewn vertex to edge point (non-conforming)"},
       {"sim.gravity", T::Number, "-9.81", "m/s^2", "gravity along y", -1000, 1000},
       // Simulation stages and limits
       {"solver.stage", T::Choice, "drape", "", "what --simulate runs: none (placed garment), preview (PD-DD), drape "
@@ -44,6 +46,12 @@ const std::vector<SettingSpec>& Settings::specs() {
        1e-12, 1},
       {"solver.preview.hold_contact_targets", T::Boolean, "false", "",
        "avatar contact targets fixed within a step once found"},
+      {"solver.preview.contact_targets", T::Choice, "reproject", "",
+       "avatar contact targets: half-spaces fixed per step, or re-projected every L-G iteration", -1e300, 1e300,
+       {"reproject", "step_planes"}},
+      {"solver.preview.friction_load", T::Choice, "inertial", "",
+       "normal load bounding friction: inertial prediction, or collision-free solve (incl. cloth tension)", -1e300,
+       1e300, {"inertial", "collision_free"}},
       {"solver.preview.relaxation_time", T::Number, "0", "s",
        "velocities zeroed after every step until this scene time (quasi-static assembly)", 0, 1e4},
       {"solver.preview.sd_iterations", T::Integer, "1", "", "dual steepest-descent updates before PCG (eq. 24)", 1,

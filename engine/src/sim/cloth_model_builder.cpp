@@ -41,6 +41,7 @@ newton::ClothModel buildClothModel(const Scene& scene, const Garment& garment, c
   model.positions.resize(3 * garment.vertexCount());
   for (int v = 0; v < garment.vertexCount(); ++v) model.positions.segment<3>(3 * v) = garment.positions.row(v);
   model.stitches = garment.stitchPairs;
+  for (const GarmentEdgeStitch& e : garment.edgeStitches) model.edgeStitches.push_back({e.vertex, e.a, e.b, e.t});
   model.pinned = pinned;
   // Moving pins: each follows its pin's motion from where the garment places it.
   const std::vector<int> motionOf = pinMotionIndex(scene, garment, pinned);
@@ -115,6 +116,10 @@ pd::PreviewSettings previewSettingsFrom(const Scene& scene) {
                                                      : pd::ContactSolveKind::DualCgThenPcg;
   p.pcgTolerance = s.number("solver.preview.pcg_tolerance");
   p.holdContactTargets = s.flag("solver.preview.hold_contact_targets");
+  p.contactTargets = s.text("solver.preview.contact_targets") == "step_planes" ? pd::ContactTargetKind::StepPlanes
+                                                                               : pd::ContactTargetKind::Reproject;
+  p.frictionLoad = s.text("solver.preview.friction_load") == "collision_free" ? pd::FrictionLoadKind::CollisionFree
+                                                                               : pd::FrictionLoadKind::Inertial;
   p.relaxationTime = s.number("solver.preview.relaxation_time");
   p.contactThickness = contactThickness(scene);
   p.sdIterations = s.integer("solver.preview.sd_iterations");

@@ -60,6 +60,13 @@ double percentile99(std::vector<double> values) {
 
 }  // namespace
 
+MeshingOptions meshingOptions(const Scene& scene) {
+  MeshingOptions o;
+  o.targetEdgeLength = scene.settings.number("mesh.target_edge_length");
+  o.conformingSeams = scene.settings.flag("mesh.conforming_seams");
+  return o;
+}
+
 Simulation::Simulation(Scene scene) : m_scene(std::move(scene)) { build(nullptr); }
 
 Simulation::Simulation(Scene scene, const ResumeState& from) : m_scene(std::move(scene)) { build(&from); }
@@ -68,7 +75,7 @@ Simulation::~Simulation() = default;
 
 void Simulation::build(const ResumeState* from) {
   Diagnostics diagnostics;
-  m_garment = buildGarment(m_scene.pattern, {m_scene.settings.number("mesh.target_edge_length")}, &diagnostics);
+  m_garment = buildGarment(m_scene.pattern, meshingOptions(m_scene), &diagnostics);
   m_scene.diagnostics.append(diagnostics);
   m_pinned = resolvePins(m_scene, m_garment);
   m_colliderMesh = mergedColliders(m_scene);
@@ -152,7 +159,7 @@ std::string Simulation::stage() const { return m_solver->preview ? "preview" : "
 std::vector<std::string> Simulation::terms() const {
   if (m_solver->newton) return m_solver->newton->energyNames();
   std::vector<std::string> t = {"pd_strain", "pd_bending", "gravity"};
-  if (!m_solver->model.stitches.empty()) t.push_back("pd_stitches");
+  if (!m_solver->model.stitches.empty() || !m_solver->model.edgeStitches.empty()) t.push_back("pd_stitches");
   if (!m_solver->model.pinned.empty()) t.push_back("pins");
   if (m_solver->collider) t.push_back("pd_avatar_contact");
   const pd::PreviewSettings ps = previewSettingsFrom(m_scene);

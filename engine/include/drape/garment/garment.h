@@ -12,6 +12,17 @@ struct GarmentStitch {
   int stitch = 0;      // index into Pattern::stitches
   int firstPair = 0;   // range [firstPair, firstPair + pairCount) in Garment::stitchPairs
   int pairCount = 0;
+  int firstEdgeStitch = 0;  // range in Garment::edgeStitches (non-conforming seams only)
+  int edgeStitchCount = 0;
+};
+
+// A vertex of one side of a seam sewn to the point (1 - t) x_a + t x_b of the other side's edge (a, b), when the
+// two sides were sampled at their own spacing (MeshingOptions::conformingSeams false).
+struct GarmentEdgeStitch {
+  int vertex = 0;
+  int a = 0;
+  int b = 0;
+  double t = 0.0;  // in [0, 1]
 };
 
 struct Garment {
@@ -26,6 +37,7 @@ struct Garment {
   // consecutive edges share their corner vertex.
   std::vector<std::vector<std::vector<int>>> edgeVertices;
   std::vector<std::pair<int, int>> stitchPairs;  // vertex pairs sewn together: (side a vertex, side b vertex)
+  std::vector<GarmentEdgeStitch> edgeStitches;  // non-conforming seams: vertex to edge point
   std::vector<GarmentStitch> stitches;
 
   int vertexCount() const { return static_cast<int>(positions.rows()); }

@@ -1,29 +1,42 @@
-// Zero-length springs: stitches between vertex pairs (the garment sews itself closed) and pins to fixed targets.
+// Zero-length springs: stitches between vertex pairs or from a vertex to a point of an edge (the garment sews
+// itself closed) and pins to fixed targets.
 // Pins are stiff springs rather than removed DOFs, so every vertex stays a degree of freedom.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "drape/newton/cloth_model.h"
 #include "drape/newton/energy.h"
 
 namespace drape::newton {
 
-// E = sum 0.5 k |x_i - x_j|^2 over stitched pairs; k in N/m.
+// E = sum 0.5 k |c_s(x)|^2 over stitches s; k in N/m. A vertex stitch (i, j) has c = x_i - x_j; an edge stitch
+// (v on edge (a, b) at t, pd-dd section 4.4) has c = x_v - (1 - t) x_a - t x_b, a 3-vertex stencil coupling v, a
+// and b. Both are zero-length springs of the same stiffness.
 class StitchSprings : public Energy {
  public:
-  StitchSprings(std::vector<std::pair<int, int>> pairs, double stiffness);
+  StitchSprings(std::vector<std::pair<int, int>> pairs, double stiffness, const std::vector<EdgeStitch>& edges = {});
   std::string_view name() const override { return "stitches"; }
   double value(const Eigen::VectorXd& x) const override;
   void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
   void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const override;
   void addCouplings(std::vector<std::pair<int, int>>& pairs) const override;
-  // Largest distance between stitched vertices, metres.
+  // Largest |c_s(x)| (distance between a stitched vertex and its partner or its edge point), metres.
   double maxGap(const Eigen::VectorXd& x) const;
 
  private:
-  std::vector<std::pair<int, int>> m_pairs;
+  // c = sum_k w[k] x_{vertices[k]} over the first size entries.
+  struct Stencil {
+    std::array<int, 3> vertices{};
+    std::array<double, 3> w{};
+    int size = 0;
+  };
+  Eigen::Vector3d constraint(const Stencil& s, const Eigen::VectorXd& x) const;
+
+  std::vector<Stencil> m_stencils;
   double m_stiffness;
 };
 

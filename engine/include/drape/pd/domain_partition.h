@@ -6,18 +6,30 @@
 #include <utility>
 #include <vector>
 
+#include "drape/newton/cloth_model.h"
+
 namespace drape::pd {
 
 class PdSystem;
 
 // Per-triangle domain id in [0, domains) from METIS k-way on the graph whose nodes are triangles and whose
-// edges join triangles sharing a mesh edge or linked by a stitch. domains is clamped to [1, |T|].
+// edges join triangles sharing a mesh edge or linked by a stitch: a vertex stitch links a triangle of each end,
+// an edge stitch a triangle of its vertex with the triangles of its edge (a, b) (or, when (a, b) is no mesh
+// edge, with a triangle of a and one of b). domains is clamped to [1, |T|].
+std::vector<int> partitionTriangles(const Eigen::MatrixX3i& triangles, int vertexCount,
+                                    const std::vector<std::pair<int, int>>& stitches,
+                                    const std::vector<newton::EdgeStitch>& edgeStitches, int domains,
+                                    unsigned seed = 1);
+// The same without edge stitches.
 std::vector<int> partitionTriangles(const Eigen::MatrixX3i& triangles, int vertexCount,
                                     const std::vector<std::pair<int, int>>& stitches, int domains,
                                     unsigned seed = 1);
 
 // One domain's share of K: the stencils owned by its triangles plus M / h^2 split evenly among the domains that
-// hold a vertex. dofs: local -> global free DOF index (increasing); k: |dofs| x |dofs|.
+// hold a vertex. An edge stitch's stencil is owned by a triangle of its edge (PdSystem), so its vertex v is held
+// by that domain too: a non-conforming seam crossing domains makes v a duplicate (or corner) DOF, and the
+// decomposed solve stays exact because sum_j P_j^T K^j P_j = K still holds.
+// dofs: local -> global free DOF index (increasing); k: |dofs| x |dofs|.
 struct DomainMatrix {
   std::vector<int> dofs;
   Eigen::SparseMatrix<double> k;

@@ -23,7 +23,9 @@ struct StrainConstraint {
 };
 
 // A constant quadratic term (1/2) x_s^T q x_s on up to 4 vertices (per coordinate): the strain constraint's
-// A^T A part, a bending hinge (Bergou et al. 2006) or a stitch. ownerTriangle decides its domain.
+// A^T A part, a bending hinge (Bergou et al. 2006), a vertex stitch (2 vertices) or an edge stitch (3 vertices
+// v, a, b with q = w A^T A, A = [1, -(1 - t), -t]; pd-dd section 4.4). ownerTriangle decides its domain: for an
+// edge stitch a triangle of the edge (a, b) when there is one.
 struct Stencil {
   std::array<int, 4> vertices{};
   int size = 0;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "drape/garment/garment.h"
+#include "drape/garment/garment_builder.h"
 #include "drape/scene/scene.h"
 #include "drape/sim/snapshot.h"
 
@@ -17,6 +18,10 @@ namespace drape {
 
 enum class StepStatus { Converged, MaxIterations, Diverged, Cancelled };
 const char* toString(StepStatus status);
+
+// The garment meshing the scene's mesh.* settings ask for (target edge length, conforming seams): what Simulation
+// builds, for every other place that meshes the scene's garment (so that vertex counts agree).
+MeshingOptions meshingOptions(const Scene& scene);
 
 struct StepReport {
   StepStatus status = StepStatus::Converged;
