@@ -40,11 +40,16 @@ std::optional<ResumeState> SimulationWorker::latestResumeState() const {
 void SimulationWorker::cancel() {
   ++m_cancelGeneration;
   m_running.store(false);
-  if (auto simulation = current()) {
-    simulation->requestCancel();
-    // A step in progress reports Cancelled; between steps, the state changes here.
-    setState(RunState::Cancelled);
-  }
+  m_cancelPending.store(true);
+  if (auto simulation = current()) simulation->requestCancel();
+  // Queued behind a step in progress: its report reaches the UI before the state change.
+  QMetaObject::invokeMethod(this, &SimulationWorker::finishCancel, Qt::QueuedConnection);
+}
+
+void SimulationWorker::finishCancel() {
+  if (!m_cancelPending.exchange(false) || !current()) return;
+  setState(RunState::Cancelled);
+  sendSnapshot();
 }
 
 void SimulationWorker::setState(RunState state) {
@@ -145,6 +150,7 @@ void SimulationWorker::start(int generation) {
   auto simulation = current();
   if (!simulation || m_running.load() || cancelledSince(generation)) return;
   simulation->clearCancel();  // after a cancel the kept state continues
+  m_cancelPending.store(false);
   if (simulation->finished()) {
     setState(RunState::Finished);
     return;
@@ -228,11 +234,7 @@ void SimulationWorker::setDrag(int vertex, Eigen::Vector3d target) {
 
 void SimulationWorker::stepOnce() {
   m_stepQueued = false;
-  if (!m_running.load()) {
-    // Cancelled between two steps (cancel() runs on the UI thread and cannot send): show where it stopped.
-    if (m_state.load() == RunState::Cancelled) sendSnapshot();
-    return;
-  }
+  if (!m_running.load()) return;  // paused or cancelled between two steps (finishCancel shows a cancel)
   auto simulation = current();
   if (!simulation) return;
   const StepReport report = simulation->step();
@@ -241,6 +243,7 @@ void SimulationWorker::stepOnce() {
   if (report.status != StepStatus::Cancelled) publishResumeState();
   if (report.status == StepStatus::Cancelled) {
     m_running.store(false);
+    m_cancelPending.store(false);  // shown here
     setState(RunState::Cancelled);
     sendSnapshot();
     return;
@@ -260,10 +263,7 @@ void SimulationWorker::stepOnce() {
     sendSnapshot();
     return;
   }
-  if (!m_running.load()) {  // paused (that slot sent the snapshot) or cancelled while stepping
-    if (m_state.load() == RunState::Cancelled) sendSnapshot();
-    return;
-  }
+  if (!m_running.load()) return;  // paused (that slot sent the snapshot) or cancelled (finishCancel follows)
   const auto since = std::chrono::steady_clock::now() - m_lastSnapshot;
   if (since >= std::chrono::milliseconds(m_snapshotIntervalMs.load())) sendSnapshot();
   scheduleStep();

@@ -36,8 +36,9 @@ class SimulationWorker : public QObject {
   explicit SimulationWorker(QObject* parent = nullptr);
   ~SimulationWorker() override;
 
-  // Thread-safe: interrupts the step in progress (Simulation::requestCancel) and stops stepping. A later
-  // start/preview/drape command clears the engine's cancel flag and continues from the kept state.
+  // Thread-safe: interrupts the step in progress (Simulation::requestCancel) and stops stepping. The state turns
+  // Cancelled on the worker thread, after the report of a step in progress (Cancelled or not) has been sent. A
+  // later start/preview/drape command clears the engine's cancel flag and continues from the kept state.
   void cancel();
   // Thread-safe: the number of cancel() calls so far. A run command carries the value its caller saw, so a
   // command issued before a cancel (still queued when the cancel happens) does not undo it.
@@ -85,6 +86,8 @@ class SimulationWorker : public QObject {
 
  private slots:
   void stepOnce();
+  // Worker thread: shows a pending cancel (state Cancelled and a snapshot) once no step is running.
+  void finishCancel();
 
  private:
   std::shared_ptr<Simulation> current() const;
@@ -105,6 +108,7 @@ class SimulationWorker : public QObject {
   std::optional<ResumeState> m_resume;
   std::atomic<RunState> m_state{RunState::Empty};
   std::atomic<bool> m_running{false};
+  std::atomic<bool> m_cancelPending{false};  // cancel() called, finishCancel not yet run
   std::atomic<int> m_snapshotIntervalMs{33};
   std::atomic<int> m_cancelGeneration{0};
   std::chrono::steady_clock::time_point m_lastSnapshot;
