@@ -10,10 +10,9 @@
 // --motion-start moves the start (and end, keeping the rate) of every moving pin to S seconds, so that a short
 // window shows the twist; --repeat R runs the whole list of configurations R times, interleaved, and keeps the
 // fastest run of each (the loaded-machine noise only ever adds time); --memory prints the peak resident memory (VmHWM) per 100k DOFs, run it alone.
-// Configurations: a base "on" (every speed-up on, except the experimental "upper") or "off" (all off) followed by
-// "+X" / "-X" modifiers, e.g. "off+bending+map", "on-reorder", "on+upper". X in {bending, map, parallel, fold,
-// reorder, fused, upper, warm, mixed}. "all" = off, on, every on-X and on+upper; "table7" = the cumulative
-// sequence off, off+bending, ... , on (newton-drape-pizana Table 7), without upper.
+// Configurations: a base "on" (every speed-up on) or "off" (all off) followed by "+X" / "-X" modifiers, e.g.
+// "off+bending+map", "on-reorder". X in {bending, map, parallel, fold, reorder, fused, warm, mixed}. "all" = off,
+// on and every on-X; "table7" = the cumulative sequence off, off+bending, ... , on (newton-drape-pizana Table 7).
 #include <sys/resource.h>
 
 #include <chrono>
@@ -41,7 +40,6 @@ struct Feature {
   const char* name;
   const char* key;
   bool* (*field)(NewtonSettings&);
-  bool inOn = true;  // part of "on" and of the table7 sequence
 };
 const std::vector<Feature>& features() {
   static const std::vector<Feature> list = {
@@ -51,7 +49,6 @@ const std::vector<Feature>& features() {
       {"fold", "solver.newton.fold_dissipation", [](NewtonSettings& s) { return &s.foldDissipation; }},
       {"reorder", "solver.newton.reorder_dofs", [](NewtonSettings& s) { return &s.reorderDofs; }},
       {"fused", "solver.cg.fused_kernels", [](NewtonSettings& s) { return &s.linear.fusedKernels; }},
-      {"upper", "solver.cg.upper_storage", [](NewtonSettings& s) { return &s.linear.upperStorage; }, false},
       {"warm", "solver.cg.warm_start", [](NewtonSettings& s) { return &s.linear.warmStart; }},
       {"mixed", "solver.cg.mixed_precision", [](NewtonSettings& s) { return &s.linear.mixedPrecision; }},
   };
@@ -70,8 +67,7 @@ bool parseConfig(const std::string& name, std::vector<bool>& on) {
   size_t pos = name.find_first_of("+-");
   const std::string base = name.substr(0, pos);
   if (base != "on" && base != "off") return false;
-  on.assign(features().size(), false);
-  for (size_t k = 0; k < features().size(); ++k) on[k] = base == "on" && features()[k].inOn;
+  on.assign(features().size(), base == "on");
   while (pos != std::string::npos) {
     const bool value = name[pos] == '+';
     size_t next = name.find_first_of("+-", pos + 1);
@@ -89,12 +85,11 @@ std::vector<std::string> expandConfigs(const std::string& value) {
   std::vector<std::string> out;
   if (value == "all") {
     out = {"off", "on"};
-    for (const auto& f : features()) out.push_back(std::string(f.inOn ? "on-" : "on+") + f.name);
+    for (const auto& f : features()) out.push_back(std::string("on-") + f.name);
   } else if (value == "table7") {
     std::string name = "off";
     out.push_back(name);
-    for (const auto& f : features())
-      if (f.inOn) out.push_back(name += std::string("+") + f.name);
+    for (const auto& f : features()) out.push_back(name += std::string("+") + f.name);
     out.back() = "on";
   } else {
     out = split(value);

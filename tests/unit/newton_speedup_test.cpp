@@ -399,22 +399,18 @@ TEST(NewtonSpeedup, PcgVariantsMeetTheToleranceAndAgreeWithCholmod) {
   for (bool reorder : {false, true})
     for (bool fused : {false, true})
       for (bool mixed : {false, true})
-        for (bool upper : {false, true})
         for (Preconditioner pre : {Preconditioner::BlockJacobi, Preconditioner::Diagonal, Preconditioner::None}) {
-          if (upper && !fused) continue;  // the upper storage is a fused-path option
           BlockMatrix a(n * n, pairs, reorder);
           fillSpd(a, pairs, 11);
           LinearSolveOptions o;
           o.fusedKernels = fused;
-          o.upperStorage = upper;
           o.mixedPrecision = mixed;
           o.preconditioner = pre;
           o.tolerance = mixed ? 1e-5 : 1e-10;
           Eigen::VectorXd x;
           const LinearSolveResult r = solveLinear(a, b, x, o);
           const std::string what = "reorder " + std::to_string(reorder) + " fused " + std::to_string(fused) +
-                                   " mixed " + std::to_string(mixed) + " upper " + std::to_string(upper) +
-                                   " pre " + std::to_string(int(pre));
+                                   " mixed " + std::to_string(mixed) + " pre " + std::to_string(int(pre));
           ASSERT_TRUE(r.ok) << what;
           EXPECT_GT(r.iterations, 3) << what;
           const double trueResidual = (s * x - b).norm() / b.norm();  // independent of the solver's own report

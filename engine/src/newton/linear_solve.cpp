@@ -113,58 +113,23 @@ void forRows(int n, const F& f) {
 }
 
 // The matrix in storage order with scalar S: static blocks (double ones used in place, float ones copied) and the
-// dynamic entries renumbered to storage rows. upper: only the blocks on and above the diagonal, copied (the static
-// part is symmetric: every stencil adds H_ab and H_ab^T), so that an SpMV reads half the matrix.
+// dynamic entries renumbered to storage rows.
 template <typename S>
 struct StorageMatrix {
   using Mat3 = Eigen::Matrix<S, 3, 3>;
-  using Vec3 = Eigen::Matrix<S, 3, 1>;
   using Vec = Eigen::Matrix<S, Eigen::Dynamic, 1>;
   struct Entry {
     int i, j;
     Mat3 block;
   };
   const Mat3* blocks = nullptr;
-  std::vector<Mat3> copy;  // float blocks when S != double; the upper blocks when upper
+  std::vector<Mat3> copy;  // float blocks when S != double
   const int* rowStart = nullptr;
   const int* cols = nullptr;
-  std::vector<int> upperStart, upperCols;
   int n = 0;
-  bool upper = false;
   std::vector<Entry> dynamic;
-  // Upper SpMV scratch: per chunk of kRowGrain rows, the transposed products landing in later chunks (bucketed
-  // by how many chunks later: spills[c][d - 1] for chunk c + d), and the chunk's share of x . Ax.
-  mutable std::vector<std::vector<std::vector<std::pair<int, Vec3>>>> spills;
-  mutable std::vector<double> chunkDots;
 
-  StorageMatrix(const BlockMatrix& a, bool upperOnly)
-      : rowStart(a.rowStarts()), cols(a.colIndices()), n(a.numBlocks()), upper(upperOnly) {
-    for (const auto& e : a.dynamicEntries())
-      dynamic.push_back({a.internalIndex(e.i), a.internalIndex(e.j), e.block.template cast<S>()});
-    if (upper) {
-      const auto& src = a.blocks();
-      upperStart.assign(n + 1, 0);
-      for (int r = 0; r < n; ++r) {
-        upperStart[r + 1] = upperStart[r];
-        for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) upperStart[r + 1] += cols[k] >= r ? 1 : 0;
-      }
-      copy.resize(upperStart[n]);
-      upperCols.resize(upperStart[n]);
-      forRows(n, [&](int r0, int r1) {
-        for (int r = r0; r < r1; ++r) {
-          int u = upperStart[r];
-          for (int k = rowStart[r]; k < rowStart[r + 1]; ++k)
-            if (cols[k] >= r) {
-              upperCols[u] = cols[k];
-              copy[u++] = src[k].template cast<S>();
-            }
-        }
-      });
-      blocks = copy.data();
-      spills.resize((n + kRowGrain - 1) / kRowGrain);
-      chunkDots.resize(spills.size());
-      return;
-    }
+  explicit StorageMatrix(const BlockMatrix& a) : rowStart(a.rowStarts()), cols(a.colIndices()), n(a.numBlocks()) {
     if constexpr (std::is_same_v<S, double>) {
       blocks = a.blocks().data();
     } else {
@@ -175,82 +140,13 @@ struct StorageMatrix {
       });
       blocks = copy.data();
     }
+    for (const auto& e : a.dynamicEntries())
+      dynamic.push_back({a.internalIndex(e.i), a.internalIndex(e.j), e.block.template cast<S>()});
   }
 
   // y = A x; returns x . y (accumulated in double).
   double multiplyDot(const Vec& x, Vec& y) const {
-    double dot = upper ? multiplyUpper(x, y) : multiplyFull(x, y);
-    for (const auto& e : dynamic) {
-      const Vec3 bij = e.block * x.template segment<3>(3 * e.j);
-      y.template segment<3>(3 * e.i) += bij;
-      dot += static_cast<double>(x.template segment<3>(3 * e.i).dot(bij));
-      if (e.i != e.j) {
-        const Vec3 bji = e.block.transpose() * x.template segment<3>(3 * e.i);
-        y.template segment<3>(3 * e.j) += bji;
-        dot += static_cast<double>(x.template segment<3>(3 * e.j).dot(bji));
-      }
-    }
-    return dot;
-  }
-
-  // Static part from the upper blocks: row r gets sum_j A_rj x_j (j >= r) and every row j > r gets A_rj^T x_r.
-  // Chunks of kRowGrain rows run in parallel; a transposed product for a row of the same chunk is added in place,
-  // one for a later chunk's row is kept and added in a second parallel pass over the target chunks, from the
-  // earlier chunks in order (deterministic, independent of the thread count).
-  // x . Ax = sum_r x_r . A_rr x_r + 2 sum_{j > r} x_r . A_rj x_j, from the same products.
-  double multiplyUpper(const Vec& x, Vec& y) const {
-    y.setZero(3 * n);
-    const int chunks = static_cast<int>(spills.size());
-    auto chunk = [&](int c) {
-      const int r0 = c * kRowGrain, r1 = std::min(n, r0 + kRowGrain);
-      auto& spill = spills[c];
-      for (auto& bucket : spill) bucket.clear();
-      double acc = 0.0;
-      for (int r = r0; r < r1; ++r) {
-        const Vec3 xr = x.template segment<3>(3 * r);
-        Vec3 s = Vec3::Zero();
-        for (int k = upperStart[r]; k < upperStart[r + 1]; ++k) {
-          const int j = upperCols[k];
-          const Vec3 bx = blocks[k] * x.template segment<3>(3 * j);
-          s += bx;
-          if (j == r) {
-            acc += static_cast<double>(xr.dot(bx));
-            continue;
-          }
-          acc += 2.0 * static_cast<double>(xr.dot(bx));
-          const Vec3 t = blocks[k].transpose() * xr;
-          if (j < r1) {
-            y.template segment<3>(3 * j) += t;
-          } else {
-            const size_t d = static_cast<size_t>(j / kRowGrain - c);
-            if (spill.size() < d) spill.resize(d);
-            spill[d - 1].emplace_back(j, t);
-          }
-        }
-        y.template segment<3>(3 * r) += s;
-      }
-      chunkDots[c] = acc;
-    };
-    auto gather = [&](int target) {
-      for (int c = 0; c < target; ++c) {
-        const size_t d = static_cast<size_t>(target - c);
-        if (spills[c].size() < d) continue;
-        for (const auto& [j, t] : spills[c][d - 1]) y.template segment<3>(3 * j) += t;
-      }
-    };
-    if (chunks <= 1) {
-      if (chunks == 1) chunk(0);
-    } else {
-      tbb::parallel_for(0, chunks, chunk);
-      tbb::parallel_for(1, chunks, gather);
-    }
-    double dot = 0.0;
-    for (int c = 0; c < chunks; ++c) dot += chunkDots[c];
-    return dot;
-  }
-
-  double multiplyFull(const Vec& x, Vec& y) const {
-    return reduceRows<double>(n, [&](int r0, int r1) {
+    double dot = reduceRows<double>(n, [&](int r0, int r1) {
       double acc = 0.0;
       for (int r = r0; r < r1; ++r) {
         Eigen::Matrix<S, 3, 1> s = Eigen::Matrix<S, 3, 1>::Zero();
@@ -260,6 +156,17 @@ struct StorageMatrix {
       }
       return acc;
     });
+    for (const auto& e : dynamic) {
+      const Eigen::Matrix<S, 3, 1> bij = e.block * x.template segment<3>(3 * e.j);
+      y.template segment<3>(3 * e.i) += bij;
+      dot += static_cast<double>(x.template segment<3>(3 * e.i).dot(bij));
+      if (e.i != e.j) {
+        const Eigen::Matrix<S, 3, 1> bji = e.block.transpose() * x.template segment<3>(3 * e.i);
+        y.template segment<3>(3 * e.j) += bji;
+        dot += static_cast<double>(x.template segment<3>(3 * e.j).dot(bji));
+      }
+    }
+    return dot;
   }
 };
 
@@ -337,14 +244,14 @@ LinearSolveResult fusedSolve(const BlockMatrix& a, const Eigen::VectorXd& b, Eig
   Eigen::VectorXd bi, xi;
   a.toInternal(b, bi);
   if (warm) a.toInternal(x, xi);
-  StorageMatrix<S> m(a, options.upperStorage);
+  StorageMatrix<S> m(a);
   Vec bs = bi.cast<S>(), xs;
   if (warm) xs = xi.cast<S>();
   result.iterations = fusedPcg<S>(m, inv, bs, xs, options.tolerance, options.maxIterations, warm);
   xi = xs.template cast<double>();
   if (!xi.allFinite()) return result;
   // True residual in double precision.
-  StorageMatrix<double> md(a, false);
+  StorageMatrix<double> md(a);
   Eigen::VectorXd axi(xi.size());
   md.multiplyDot(xi, axi);
   const double bNorm = bi.norm();
@@ -381,7 +288,7 @@ LinearSolveResult plainSolve(const BlockMatrix& a, const Eigen::VectorXd& b, Eig
     auto applyA = [&a](const Eigen::VectorXd& p, Eigen::VectorXd& out) { a.multiply(p, out); };
     if (options.preconditioner != Preconditioner::IncompleteCholesky && a.reordered()) {
       // Storage (RCM) order: permute once, SpMV over contiguous block rows.
-      StorageMatrix<double> m(a, false);
+      StorageMatrix<double> m(a);
       auto applyStorage = [&m](const Eigen::VectorXd& p, Eigen::VectorXd& out) {
         out.resize(p.size());
         m.multiplyDot(p, out);

@@ -83,8 +83,6 @@ const std::vector<SettingSpec>& Settings::specs() {
        {"none", "diagonal", "block_jacobi", "incomplete_cholesky", "cholmod_direct"}},
       {"solver.cg.mixed_precision", T::Boolean, "false", "", "PCG in single precision (derivatives stay double)"},
       {"solver.cg.warm_start", T::Boolean, "true", "", "PCG starts from the last step's velocity change"},
-      {"solver.cg.upper_storage", T::Boolean, "false", "",
-       "fused PCG reads only the blocks on and above the diagonal (half the memory traffic per SpMV)"},
       {"solver.cg.fused_kernels", T::Boolean, "true", "",
        "fused parallel block PCG (one pass per phase, deterministic TBB reductions); false: plain Eigen PCG"},
       {"solver.newton.reorder_dofs", T::Boolean, "true", "", "Reverse Cuthill-McKee order of the matrix rows (6.4)"},

@@ -23,9 +23,6 @@ struct LinearSolveOptions {
   // deterministic reductions; float matrix copy for mixedPrecision. false = the plain Eigen-vector PCG.
   // Preconditioners None, Diagonal and BlockJacobi only (IncompleteCholesky always takes the plain path).
   bool fusedKernels = true;
-  // Fused path only: the SpMV reads the blocks on and above the diagonal (copied once per solve) and adds the
-  // transposed products itself, half the memory traffic of the full matrix (the static part is symmetric).
-  bool upperStorage = false;
 };
 
 struct LinearSolveResult {
