@@ -73,29 +73,21 @@ Eigen::Matrix<double, 9, 9> MembraneDissipation::stencilDerivatives(int s, const
   return he;
 }
 
-void MembraneDissipation::addHessian(const Eigen::VectorXd&, BlockMatrix& h) const {
-  if (folded()) return;
-  const bool cached = m_options.cachedBlockMap;
-  if (cached) m_stencils.prepare(h);
-  m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
-    for (int i = 0; i < count; ++i) {
-      const int s = ids[i];
-      Eigen::Matrix<double, 9, 9> he = m_jacobians[s].transpose() * m_weights[s].asDiagonal() * m_jacobians[s];
-      m_stencils.addHessian(s, he, h, cached);
-    }
-  });
-}
+void MembraneDissipation::addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const { assemble(x, nullptr, h); }
 
 void MembraneDissipation::addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const {
-  if (folded()) return;
+  assemble(x, &g, h);
+}
+
+void MembraneDissipation::assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockMatrix& h) const {
+  if (folded()) return;  // the membrane adds this energy's share in its own pass
   const bool cached = m_options.cachedBlockMap;
   if (cached) m_stencils.prepare(h);
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
+    Eigen::Matrix<double, 9, 1> ge;
     for (int i = 0; i < count; ++i) {
-      const int s = ids[i];
-      Eigen::Matrix<double, 9, 9> he = m_jacobians[s].transpose() * m_weights[s].asDiagonal() * m_jacobians[s];
-      m_stencils.addHessian(s, he, h, cached);
-      m_stencils.addGradient(s, he * gatherDelta<3>(m_stencils[s], x, *m_previous), g);  // quadratic in d
+      m_stencils.addHessian(ids[i], stencilDerivatives(ids[i], x, g ? &ge : nullptr), h, cached);
+      if (g) m_stencils.addGradient(ids[i], ge, *g);
     }
   });
 }
@@ -146,30 +138,21 @@ Eigen::Matrix<double, 12, 12> BendingDissipation::stencilDerivatives(int s, cons
   return m_coefficients[s] * (m_gradients[s] * m_gradients[s].transpose());
 }
 
-void BendingDissipation::addHessian(const Eigen::VectorXd&, BlockMatrix& h) const {
-  if (folded()) return;
-  const bool cached = m_options.cachedBlockMap;
-  if (cached) m_stencils.prepare(h);
-  m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
-    for (int i = 0; i < count; ++i) {
-      const int s = ids[i];
-      Eigen::Matrix<double, 12, 12> he = m_coefficients[s] * (m_gradients[s] * m_gradients[s].transpose());
-      m_stencils.addHessian(s, he, h, cached);
-    }
-  });
-}
+void BendingDissipation::addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const { assemble(x, nullptr, h); }
 
 void BendingDissipation::addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const {
-  if (folded()) return;
+  assemble(x, &g, h);
+}
+
+void BendingDissipation::assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockMatrix& h) const {
+  if (folded()) return;  // the hinge bending adds this energy's share in its own pass
   const bool cached = m_options.cachedBlockMap;
   if (cached) m_stencils.prepare(h);
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
+    Eigen::Matrix<double, 12, 1> ge;
     for (int i = 0; i < count; ++i) {
-      const int s = ids[i];
-      Eigen::Matrix<double, 12, 12> he = m_coefficients[s] * (m_gradients[s] * m_gradients[s].transpose());
-      m_stencils.addHessian(s, he, h, cached);
-      const double rate = m_gradients[s].dot(gatherDelta<4>(m_stencils[s], x, *m_previous));
-      m_stencils.addGradient(s, (m_coefficients[s] * rate) * m_gradients[s], g);
+      m_stencils.addHessian(ids[i], stencilDerivatives(ids[i], x, g ? &ge : nullptr), h, cached);
+      if (g) m_stencils.addGradient(ids[i], ge, *g);
     }
   });
 }

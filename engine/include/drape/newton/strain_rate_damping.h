@@ -46,6 +46,8 @@ class MembraneDissipation : public LaggedDissipation {
 
  private:
   bool folded() const { return m_folded && m_options.foldDissipation; }
+  // Hessian into h and, when g is given, the gradient into *g (one pass).
+  void assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockMatrix& h) const;
 
   std::vector<MembraneElement> m_elements;
   bool m_folded = false;
@@ -76,6 +78,7 @@ class BendingDissipation : public LaggedDissipation {
 
  private:
   bool folded() const { return m_folded && m_options.foldDissipation; }
+  void assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockMatrix& h) const;  // as MembraneDissipation's
 
   std::vector<Hinge> m_hinges;
   bool m_folded = false;
