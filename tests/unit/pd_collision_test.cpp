@@ -20,6 +20,7 @@
 #include "drape/pd/grid_cloth.h"
 #include "drape/pd/pd_system.h"
 #include "drape/pd/preview_solver.h"
+#include "pd_contact_problem.h"
 
 namespace drape::pd {
 namespace {
@@ -54,61 +55,13 @@ Eigen::MatrixX3d rowsOf(const Eigen::VectorXd& flat) {
 // ---------------------------------------------------------------------------------------------------------------
 // 1. Dual steepest descent + PCG (eq. 24, eq. 14).
 
-struct ContactProblem {
-  newton::ClothModel model;
-  std::unique_ptr<PdSystem> system;
-  std::unique_ptr<MonolithicSolver> solver;
-  Eigen::MatrixX3d b;      // right-hand side of eq. 3
-  ContactSet contacts;
-};
-
 // A horizontal cloth whose collision-free solve sinks 5 cm; the vertices over a disc are held on a sphere cap.
-ContactProblem contactProblem() {
-  ContactProblem p;
-  GridClothOptions o;
-  o.nx = o.ny = 31;
-  o.horizontal = true;
-  o.pinTopCorners = false;
-  p.model = makeGridCloth(o);
-  PreviewSettings s;
-  p.system = std::make_unique<PdSystem>(p.model, s);
-  p.solver = std::make_unique<MonolithicSolver>(p.system->matrix());
-  const int n = p.system->freeCount();
-  Eigen::MatrixX3d x0 = rowsOf(p.model.positions);
-  x0.col(1).array() -= 0.05;
-  p.b = p.system->matrix() * x0;
-  const double radius = 0.3;
-  for (int d = 0; d < n; ++d) {
-    const Eigen::Vector3d q = x0.row(d).transpose();
-    const double r2 = q.x() * q.x() + q.z() * q.z();
-    if (r2 > 0.2 * 0.2) continue;
-    p.contacts.dofs.push_back(d);
-    p.contacts.weights.push_back(1e6);
-  }
-  p.contacts.targets.resize(p.contacts.size(), 3);
-  for (int k = 0; k < p.contacts.size(); ++k) {
-    const Eigen::Vector3d q = x0.row(p.contacts.dofs[k]).transpose();
-    p.contacts.targets.row(k) << q.x(), std::sqrt(radius * radius - q.x() * q.x() - q.z() * q.z()) - radius, q.z();
-  }
-  return p;
-}
-
-// Independent reference: (K + Delta K) x = b + Delta b by a sparse LDL^T.
-Eigen::MatrixX3d directSolution(const ContactProblem& p) {
-  Eigen::SparseMatrix<double> a = p.system->matrix();
-  Eigen::MatrixX3d rhs = p.b;
-  for (int k = 0; k < p.contacts.size(); ++k) {
-    a.coeffRef(p.contacts.dofs[k], p.contacts.dofs[k]) += p.contacts.weights[k];
-    rhs.row(p.contacts.dofs[k]) += p.contacts.weights[k] * p.contacts.targets.row(k);
-  }
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(a);
-  return ldlt.solve(rhs);
-}
+test::ContactProblem contactProblem() { return test::makeContactProblem(31, 0.05, 0.2); }
 
 TEST(PdCollision, SteepestDescentThenPcgReachesThePcgSolution) {
-  const ContactProblem p = contactProblem();
+  const test::ContactProblem p = contactProblem();
   ASSERT_GT(p.contacts.size(), 50);
-  const Eigen::MatrixX3d reference = directSolution(p);
+  const Eigen::MatrixX3d reference = test::directContactSolution(p);
   Eigen::MatrixX3d free;
   p.solver->solve(p.b, free);
 

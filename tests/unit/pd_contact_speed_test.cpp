@@ -17,59 +17,15 @@
 #include "drape/pd/grid_cloth.h"
 #include "drape/pd/pd_system.h"
 #include "drape/pd/preview_solver.h"
+#include "pd_contact_problem.h"
 
 namespace drape::pd {
 namespace {
 
-// A 41 x 41 horizontal jersey-like cloth (1 m square) whose collision-free solve sinks `sink` metres; every vertex
-// over a disc of radius `patch` is held on a sphere cap of radius 0.3 m with w_k = 1e6 N/m: a dense contact patch
-// as a garment lying on the body.
-struct Problem {
-  newton::ClothModel model;
-  std::unique_ptr<PdSystem> system;
-  std::unique_ptr<MonolithicSolver> solver;
-  Eigen::MatrixX3d b;
-  ContactSet contacts;
-};
-
-Problem makeProblem(double sink, double patch) {
-  Problem p;
-  GridClothOptions o;
-  o.nx = o.ny = 41;
-  o.horizontal = true;
-  o.pinTopCorners = false;
-  p.model = makeGridCloth(o);
-  p.system = std::make_unique<PdSystem>(p.model, PreviewSettings{});
-  p.solver = std::make_unique<MonolithicSolver>(p.system->matrix());
-  Eigen::MatrixX3d x0(p.system->freeCount(), 3);
-  for (int d = 0; d < x0.rows(); ++d) x0.row(d) = p.model.positions.segment<3>(3 * d).transpose();
-  x0.col(1).array() -= sink;
-  p.b = p.system->matrix() * x0;
-  const double radius = 0.3;
-  for (int d = 0; d < x0.rows(); ++d) {
-    const double r2 = x0(d, 0) * x0(d, 0) + x0(d, 2) * x0(d, 2);
-    if (r2 > patch * patch) continue;
-    p.contacts.dofs.push_back(d);
-    p.contacts.weights.push_back(1e6);
-  }
-  p.contacts.targets.resize(p.contacts.size(), 3);
-  for (int k = 0; k < p.contacts.size(); ++k) {
-    const Eigen::Vector3d q = x0.row(p.contacts.dofs[k]).transpose();
-    p.contacts.targets.row(k) << q.x(), std::sqrt(radius * radius - q.x() * q.x() - q.z() * q.z()) - radius, q.z();
-  }
-  return p;
-}
-
-Eigen::MatrixX3d direct(const Problem& p) {
-  Eigen::SparseMatrix<double> a = p.system->matrix();
-  Eigen::MatrixX3d rhs = p.b;
-  for (int k = 0; k < p.contacts.size(); ++k) {
-    a.coeffRef(p.contacts.dofs[k], p.contacts.dofs[k]) += p.contacts.weights[k];
-    rhs.row(p.contacts.dofs[k]) += p.contacts.weights[k] * p.contacts.targets.row(k);
-  }
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(a);
-  return ldlt.solve(rhs);
-}
+// A 41 x 41 cloth whose collision-free solve sinks `sink` metres with a dense contact patch of radius `patch`.
+using Problem = test::ContactProblem;
+Problem makeProblem(double sink, double patch) { return test::makeContactProblem(41, sink, patch); }
+Eigen::MatrixX3d direct(const Problem& p) { return test::directContactSolution(p); }
 
 // Collision-free solves a contact solve made: one per dual update and per PCG iteration, plus the warm start's.
 int solvesOf(const ContactSolveStats& s) { return s.sdIterations + s.pcgIterations + (s.warmRelativeResidual < 1.0); }
