@@ -2,6 +2,9 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
 #include <string>
 
 #include "drape/core/input_error.h"
@@ -10,10 +13,61 @@ namespace drape {
 
 Eigen::Vector3d PinMotion::at(const Eigen::Vector3d& initial, double t) const {
   double s = 1.0;
-  if (t <= start) s = 0.0;
-  else if (t < end) s = (t - start) / (end - start);
+  if (t <= start)
+    s = 0.0;
+  else if (t < end)
+    s = (t - start) / (end - start);
   const Eigen::AngleAxisd turn(s * angle, axis);
   return center + turn * (initial - center) + s * translation;
+}
+
+namespace {
+
+// A saved position and a vertex closer than this (metres) are the same point (JSON text round-off): the index
+// given is kept even when another vertex sits there too (coincident vertices of two panels).
+constexpr double kSamePoint = 1e-6;
+
+std::string formatPoint(const Eigen::Vector3d& p) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%.3f, %.3f, %.3f)", p.x(), p.y(), p.z());
+  return text;
+}
+
+// Vertex entry k of a vertex pin with saved positions: the index when its vertex is at the saved position, else
+// the vertex nearest to it (lowest index on a tie), when within tolerance.
+int resolveSavedVertex(const PinSpec& pin, size_t k, const Garment& garment, double tolerance) {
+  const Eigen::Vector3d& saved = pin.at[k];
+  const int given = pin.vertices[k];
+  if (given < garment.vertexCount() && (garment.positions.row(given).transpose() - saved).norm() <= kSamePoint)
+    return given;
+  int nearest = -1;
+  double best = std::numeric_limits<double>::infinity();
+  for (int v = 0; v < garment.vertexCount(); ++v) {
+    const double d = (garment.positions.row(v).transpose() - saved).squaredNorm();
+    if (d < best) {
+      best = d;
+      nearest = v;
+    }
+  }
+  if (nearest < 0) throw InputError(pin.where + ": vertices[" + std::to_string(k) + "]: the garment has no vertex");
+  const double distance = std::sqrt(best);
+  if (distance > tolerance) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  " but the nearest garment vertex is %.1f mm away (more than %.1f mm: ", 1000.0 * distance,
+                  1000.0 * tolerance);
+    throw InputError(pin.where + ": vertices[" + std::to_string(k) + "] was saved at " + formatPoint(saved) + text +
+                     "the pattern or its meshing changed): re-pin it");
+  }
+  return nearest;
+}
+
+}  // namespace
+
+double vertexPinTolerance(const Scene& scene) {
+  const double edge =
+      scene.settings.has("mesh.target_edge_length") ? scene.settings.number("mesh.target_edge_length") : 0.01;
+  return std::min(0.25 * edge, 0.005);
 }
 
 std::vector<int> pinVertices(const PinSpec& pin, const Scene& scene, const Garment& garment) {
@@ -24,6 +78,13 @@ std::vector<int> pinVertices(const PinSpec& pin, const Scene& scene, const Garme
       if ((p.array() >= pin.region.min.array()).all() && (p.array() <= pin.region.max.array()).all())
         selected.push_back(v);
     }
+  } else if (!pin.vertices.empty() && !pin.at.empty()) {
+    // The saved positions decide; the indices are a hint (a renumbered mesh corrects them).
+    if (pin.at.size() != pin.vertices.size())
+      throw InputError(pin.where + ": 'at' has " + std::to_string(pin.at.size()) + " positions but 'vertices' has " +
+                       std::to_string(pin.vertices.size()) + " entries");
+    const double tolerance = vertexPinTolerance(scene);
+    for (size_t k = 0; k < pin.vertices.size(); ++k) selected.push_back(resolveSavedVertex(pin, k, garment, tolerance));
   } else if (!pin.vertices.empty()) {
     for (int v : pin.vertices)
       if (v >= garment.vertexCount())

@@ -44,10 +44,14 @@ Fabric resolveDefaultFabric(const Settings& settings) {
     double Fabric::*field;
   };
   static const Override overrides[] = {
-      {"fabric.stretch_warp", &Fabric::stretchWarp}, {"fabric.stretch_weft", &Fabric::stretchWeft},
-      {"fabric.shear", &Fabric::shear},              {"fabric.bend_warp", &Fabric::bendWarp},
-      {"fabric.bend_weft", &Fabric::bendWeft},       {"fabric.density", &Fabric::density},
-      {"fabric.friction", &Fabric::friction},        {"fabric.thickness", &Fabric::thickness},
+      {"fabric.stretch_warp", &Fabric::stretchWarp},
+      {"fabric.stretch_weft", &Fabric::stretchWeft},
+      {"fabric.shear", &Fabric::shear},
+      {"fabric.bend_warp", &Fabric::bendWarp},
+      {"fabric.bend_weft", &Fabric::bendWeft},
+      {"fabric.density", &Fabric::density},
+      {"fabric.friction", &Fabric::friction},
+      {"fabric.thickness", &Fabric::thickness},
       {"fabric.damping", &Fabric::damping},
   };
   for (const auto& o : overrides)
@@ -118,8 +122,7 @@ PinMotion parsePinMotion(const nlohmann::json& m, const std::string& where) {
   motion.start = finiteNumber(m, "start", where);
   motion.end = finiteNumber(m, "end", where);
   if (motion.end <= motion.start) throw InputError(where + ": 'end' must be after 'start'");
-  if (!m.contains("rotate") && !m.contains("translate"))
-    throw InputError(where + ": give 'rotate' and/or 'translate'");
+  if (!m.contains("rotate") && !m.contains("translate")) throw InputError(where + ": give 'rotate' and/or 'translate'");
   if (m.contains("rotate")) {
     const auto& r = m.at("rotate");
     const std::string at = where + " rotate";
@@ -135,6 +138,29 @@ PinMotion parsePinMotion(const nlohmann::json& m, const std::string& where) {
   return motion;
 }
 
+// "at": [[x, y, z], ...], one placed position (metres) per entry of the pin's "vertices".
+std::vector<Eigen::Vector3d> parsePinPositions(const nlohmann::json& a, size_t count, const std::string& where) {
+  if (!a.is_array())
+    throw InputError(where + ": 'at' must be a list of [x, y, z] positions (metres), one per entry of 'vertices'");
+  if (a.size() != count)
+    throw InputError(where + ": 'at' has " + std::to_string(a.size()) + " positions but 'vertices' has " +
+                     std::to_string(count) + " entries (one position per vertex)");
+  std::vector<Eigen::Vector3d> out;
+  for (size_t k = 0; k < a.size(); ++k) {
+    const auto& e = a[k];
+    const std::string at = where + ": at[" + std::to_string(k) + "]";
+    if (!e.is_array() || e.size() != 3) throw InputError(at + " must be [x, y, z] (metres)");
+    Eigen::Vector3d p;
+    for (int i = 0; i < 3; ++i) {
+      if (!e[i].is_number() || !std::isfinite(e[i].get<double>()))
+        throw InputError(at + " must hold three finite numbers (metres)");
+      p[i] = e[i].get<double>();
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<PinSpec> parsePins(const nlohmann::json& j, const Pattern& pattern, const std::string& where) {
@@ -145,9 +171,12 @@ std::vector<PinSpec> parsePins(const nlohmann::json& j, const Pattern& pattern, 
     PinSpec pin;
     pin.where = where + ": pin " + std::to_string(i);
     if (!p.is_object()) throw InputError(pin.where + ": expected an object");
-    rejectUnknown(p, {"panel", "edge", "edge_label", "region", "vertices", "motion"}, pin.where);
+    rejectUnknown(p, {"panel", "edge", "edge_label", "region", "vertices", "at", "motion"}, pin.where);
     const int kinds = int(p.contains("region")) + int(p.contains("panel")) + int(p.contains("vertices"));
-    if (kinds != 1) throw InputError(pin.where + ": give exactly one of 'panel' (with an edge), 'region' or 'vertices'");
+    if (kinds != 1)
+      throw InputError(pin.where + ": give exactly one of 'panel' (with an edge), 'region' or 'vertices'");
+    if (p.contains("at") && !p.contains("vertices"))
+      throw InputError(pin.where + ": 'at' belongs to a vertex pin (one position per entry of 'vertices')");
     if (p.contains("region")) {
       const auto& r = p.at("region");
       if (!r.is_object()) throw InputError(pin.where + ": 'region' must be {\"min\": [..], \"max\": [..]}");
@@ -158,12 +187,15 @@ std::vector<PinSpec> parsePins(const nlohmann::json& j, const Pattern& pattern, 
         throw InputError(pin.where + ": region 'max' is below 'min'");
     } else if (p.contains("vertices")) {
       const auto& vs = p.at("vertices");
-      if (!vs.is_array() || vs.empty()) throw InputError(pin.where + ": 'vertices' must be a non-empty list of indices");
+      if (!vs.is_array() || vs.empty())
+        throw InputError(pin.where + ": 'vertices' must be a non-empty list of indices");
       for (size_t k = 0; k < vs.size(); ++k) {
         if (!vs[k].is_number_integer() || vs[k].get<long long>() < 0 || vs[k].get<long long>() > INT32_MAX)
-          throw InputError(pin.where + ": vertices[" + std::to_string(k) + "] must be a vertex index (an integer >= 0)");
+          throw InputError(pin.where + ": vertices[" + std::to_string(k) +
+                           "] must be a vertex index (an integer >= 0)");
         pin.vertices.push_back(vs[k].get<int>());
       }
+      if (p.contains("at")) pin.at = parsePinPositions(p.at("at"), pin.vertices.size(), pin.where);
     } else {
       pin.panel = json::text(p, "panel", pin.where);
       const int panel = pattern.panelIndex(pin.panel);
@@ -180,7 +212,8 @@ std::vector<PinSpec> parsePins(const nlohmann::json& j, const Pattern& pattern, 
       } else {
         pin.edgeLabel = json::text(p, "edge_label", pin.where);
         const auto& edges = pattern.panels[panel].edges;
-        auto it = std::find_if(edges.begin(), edges.end(), [&](const PanelEdge& e) { return e.label == pin.edgeLabel; });
+        auto it =
+            std::find_if(edges.begin(), edges.end(), [&](const PanelEdge& e) { return e.label == pin.edgeLabel; });
         if (it == edges.end())
           throw InputError(pin.where + ": panel '" + pin.panel + "' has no edge labelled '" + pin.edgeLabel + "'");
         pin.edge = static_cast<int>(it - edges.begin());

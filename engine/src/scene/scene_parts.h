@@ -19,7 +19,8 @@ std::map<std::string, Fabric> parsePanelFabrics(const nlohmann::json& j, const P
 // "colliders": [{"type": "sphere", "center": [x, y, z], "radius": r}, {"type": "box", "min": [..], "max": [..]}]
 std::vector<Collider> parseColliders(const nlohmann::json& j, const std::string& where);
 
-// "pins": [{"panel": "p", "edge": 2}, {"panel": "p", "edge_label": "waist"}, {"region": {"min": [..], "max": [..]}}]
+// "pins": [{"panel": "p", "edge": 2}, {"panel": "p", "edge_label": "waist"}, {"region": {"min": [..], "max": [..]}},
+//          {"vertices": [12, 40], "at": [[x, y, z], [x, y, z]]}] ("at" optional: the placed positions, metres)
 std::vector<PinSpec> parsePins(const nlohmann::json& j, const Pattern& pattern, const std::string& where);
 
 }  // namespace drape

@@ -41,6 +41,8 @@ Scene buildScene(const SceneState& state) {
     if (!state.vertexPins->empty()) {
       PinSpec pin;
       pin.vertices = *state.vertexPins;
+      if (state.vertexPinPositions.size() == state.vertexPins->size())
+        for (const auto& p : state.vertexPinPositions) pin.at.emplace_back(p[0], p[1], p[2]);
       pin.where = state.input.string() + ": pins set in the GUI";
       scene.pins.push_back(std::move(pin));
     }
@@ -113,7 +115,18 @@ bool SceneDocument::keepsMesh(const SceneState& state) const {
 std::vector<int> SceneDocument::vertexPins() const {
   std::vector<int> vertices;
   if (!m_scene) return vertices;
-  for (const PinSpec& pin : m_scene->pins) vertices.insert(vertices.end(), pin.vertices.begin(), pin.vertices.end());
+  for (const PinSpec& pin : m_scene->pins) {
+    if (pin.vertices.empty()) continue;
+    std::vector<int> held = pin.vertices;
+    if (m_garment) {
+      try {
+        held = pinVertices(pin, *m_scene, *m_garment);  // saved positions ("at") may correct the indices
+      } catch (const std::exception&) {
+        // Unresolvable saved positions: building the scene reports that error; show the file's indices meanwhile.
+      }
+    }
+    vertices.insert(vertices.end(), held.begin(), held.end());
+  }
   std::sort(vertices.begin(), vertices.end());
   vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
   return vertices;
@@ -137,6 +150,7 @@ bool SceneDocument::togglePin(int vertex) {
           return false;
         }
       } catch (const std::exception&) {
+        // Unresolvable saved positions: building the scene reports that error; show the file's indices meanwhile.
       }
     }
     vertices.insert(it, vertex);
@@ -145,6 +159,10 @@ bool SceneDocument::togglePin(int vertex) {
   }
   SceneState next = m_state;
   next.vertexPins = vertices;
+  next.vertexPinPositions.clear();
+  for (int v : vertices)
+    next.vertexPinPositions.push_back(
+        {m_garment->positions(v, 0), m_garment->positions(v, 1), m_garment->positions(v, 2)});
   return change(next, pinned ? tr("Unpin vertex %1").arg(vertex) : tr("Pin vertex %1").arg(vertex));
 }
 

@@ -80,7 +80,14 @@ std::string sceneFileText(const Scene& scene, const SceneState& state, const std
     if (!state.vertexPins->empty()) {
       QJsonArray vertices;
       for (int v : *state.vertexPins) vertices.append(v);
-      pins.append(QJsonObject{{"vertices", vertices}});
+      QJsonObject pin{{"vertices", vertices}};
+      // The placed positions make the pin survive a renumbered mesh (docs/FORMATS.md, "pins").
+      if (state.vertexPinPositions.size() == state.vertexPins->size()) {
+        QJsonArray at;
+        for (const auto& p : state.vertexPinPositions) at.append(QJsonArray{p[0], p[1], p[2]});
+        pin["at"] = at;
+      }
+      pins.append(pin);
     }
     if (pins.isEmpty())
       root.remove("pins");

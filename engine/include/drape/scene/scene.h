@@ -46,6 +46,9 @@ struct PinSpec {
   bool byRegion = false;
   BoundingBox region;
   std::vector<int> vertices;  // garment vertex indices (a vertex pin when non-empty)
+  // Vertex pin only, optional ("at"): the placed position (metres, Garment::positions) each entry of vertices was
+  // saved at, same order; when given the position decides which vertex is pinned (pins.h, pinVertices).
+  std::vector<Eigen::Vector3d> at;
   bool moving = false;
   PinMotion motion;   // when moving
   std::string where;  // "scene.json: pin 2", for messages

@@ -6,6 +6,7 @@
 #include <QObject>
 #include <QString>
 #include <QUndoStack>
+#include <array>
 #include <filesystem>
 #include <map>
 #include <functional>
@@ -30,6 +31,9 @@ struct SceneState {
   // Garment vertices pinned in the GUI (sorted, unique). When set, they replace the vertex pins of the file
   // ("pins": [{"vertices": [...]}]) by one vertex pin (none when empty); unset: the file's pins as they are.
   std::optional<std::vector<int>> vertexPins;
+  // Placed position (metres, Garment::positions) of each vertexPins entry, same order: the pin's "at", which keeps
+  // it on the same cloth point when the mesh is renumbered (PinSpec::at). Empty: indices only.
+  std::vector<std::array<double, 3>> vertexPinPositions;
 
   bool operator==(const SceneState&) const = default;
   SceneRequest request() const;
@@ -39,7 +43,8 @@ struct SceneState {
 Scene buildScene(const SceneState& state);
 
 // The scene file that reproduces scene and state: the original file's structure (name, pins, colliders) with
-// every setting that differs from its default, the GUI vertex pins, and paths relative to target's folder.
+// every setting that differs from its default, the GUI vertex pins (with their placed positions, "at"), and paths
+// relative to target's folder.
 // Returns JSON text.
 std::string sceneFileText(const Scene& scene, const SceneState& state, const std::filesystem::path& target);
 
@@ -64,7 +69,7 @@ class SceneDocument : public QObject {
   // Pins garment vertex when no vertex pin holds it, else unpins it (one undoable command). A vertex held by
   // an edge or region pin of the file cannot be unpinned here: warningsReported says so, returns false.
   bool togglePin(int vertex);
-  // Vertices the scene's vertex pins hold (sorted, unique).
+  // Vertices the scene's vertex pins hold (sorted, unique), as resolved on the current garment.
   std::vector<int> vertexPins() const;
 
   // Where the running simulation is (the controller's latestResumeState). When set, the simulation of an edit
