@@ -7,7 +7,8 @@ namespace drape::collision {
 
 std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(const ContactSetup& setup, int vertexCount,
                                                                  const Eigen::MatrixX3i& triangles,
-                                                                 const std::vector<std::pair<int, int>>& stitches) {
+                                                                 const std::vector<std::pair<int, int>>& stitches,
+                                                                 const std::vector<newton::EdgeStitch>& edgeStitches) {
   std::vector<std::unique_ptr<newton::Energy>> out;
   const AvatarContactEnergy* avatar = nullptr;
   const SelfContactEnergy* self = nullptr;
@@ -17,7 +18,8 @@ std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(const ContactSe
     out.push_back(std::move(e));
   }
   if (setup.selfCollision && triangles.rows() > 0) {
-    auto e = std::make_unique<SelfContactEnergy>(triangles, vertexCount, stitches, setup.selfContact, setup.selfMargin);
+    auto e = std::make_unique<SelfContactEnergy>(triangles, vertexCount, contactMergedVertices(stitches, edgeStitches),
+                                                 setup.selfContact, setup.selfMargin);
     self = e.get();
     out.push_back(std::move(e));
   }

@@ -8,6 +8,14 @@
 
 namespace drape::collision {
 
+std::vector<std::pair<int, int>> contactMergedVertices(const std::vector<std::pair<int, int>>& stitchPairs,
+                                                       const std::vector<newton::EdgeStitch>& edgeStitches) {
+  std::vector<std::pair<int, int>> merged = stitchPairs;
+  merged.reserve(stitchPairs.size() + edgeStitches.size());
+  for (const newton::EdgeStitch& e : edgeStitches) merged.emplace_back(e.vertex, e.t <= 0.5 ? e.a : e.b);
+  return merged;
+}
+
 SelfContactEnergy::SelfContactEnergy(const Eigen::MatrixX3i& triangles, int vertexCount,
                                      const std::vector<std::pair<int, int>>& mergedVertices, ContactParameters params,
                                      double margin)
@@ -25,7 +33,8 @@ void SelfContactEnergy::ensureCandidates(const Eigen::VectorXd& x) const {
   if (m_reference.size() == x.size()) {
     const Eigen::VectorXd diff = x - m_reference;
     double maxMove2 = 0.0;
-    for (Eigen::Index v = 0; v < diff.size() / 3; ++v) maxMove2 = std::max(maxMove2, diff.segment<3>(3 * v).squaredNorm());
+    for (Eigen::Index v = 0; v < diff.size() / 3; ++v)
+      maxMove2 = std::max(maxMove2, diff.segment<3>(3 * v).squaredNorm());
     // Two primitives each moving at most margin/2 close a gap by at most margin.
     if (2.0 * std::sqrt(maxMove2) <= m_margin) return;
   }
@@ -49,7 +58,8 @@ std::vector<SelfContactEnergy::Evaluated> SelfContactEnergy::evaluate(const Eige
     if (k < vt) {
       const auto& p = m_vertexTriangle[k];
       e.vertices = {p.vertex, tris(p.triangle, 0), tris(p.triangle, 1), tris(p.triangle, 2)};
-      e.distance = pointTriangleSquaredDistance(at(e.vertices[0]), at(e.vertices[1]), at(e.vertices[2]), at(e.vertices[3]));
+      e.distance =
+          pointTriangleSquaredDistance(at(e.vertices[0]), at(e.vertices[1]), at(e.vertices[2]), at(e.vertices[3]));
     } else {
       const auto& p = m_edgeEdge[k - vt];
       e.vertices = {edges(p.first, 0), edges(p.first, 1), edges(p.second, 0), edges(p.second, 1)};

@@ -10,6 +10,7 @@
 
 #include "drape/collision/aabb.h"
 #include "drape/collision/distance.h"
+#include "drape/collision/self_contact.h"
 
 namespace drape::pd {
 namespace {
@@ -48,11 +49,11 @@ int findRoot(std::vector<int>& parent, int v) {
 
 ClothContacts::ClothContacts(const Eigen::MatrixX3i& triangles, int vertexCount,
                              const std::vector<std::pair<int, int>>& stitches, std::vector<int> dofOfVertex,
-                             const ClothContactOptions& options)
+                             const ClothContactOptions& options, const std::vector<newton::EdgeStitch>& edgeStitches)
     : m_triangles(triangles), m_dofOfVertex(std::move(dofOfVertex)), m_options(options) {
   m_canonical.resize(vertexCount);
   std::iota(m_canonical.begin(), m_canonical.end(), 0);
-  for (const auto& [a, b] : stitches) {
+  for (const auto& [a, b] : collision::contactMergedVertices(stitches, edgeStitches)) {
     if (a < 0 || b < 0 || a >= vertexCount || b >= vertexCount) continue;
     const int ra = findRoot(m_canonical, a), rb = findRoot(m_canonical, b);
     if (ra != rb) m_canonical[std::max(ra, rb)] = std::min(ra, rb);

@@ -124,7 +124,8 @@ PreviewSolver::PreviewSolver(const newton::ClothModel& model, const PreviewSetti
   if (settings.selfCollision)
     im.cloth = std::make_unique<ClothContacts>(
         model.triangles, nv, model.stitches, im.system->dofOfVertex(),
-        ClothContactOptions{settings.contactThickness, settings.contactMargin, settings.selfContactWeight});
+        ClothContactOptions{settings.contactThickness, settings.contactMargin, settings.selfContactWeight},
+        model.edgeStitches);
   im.accumulator.reset(im.system->freeCount());
   toFlat(im.x, im.flatX);
   toFlat(im.v, im.flatV);

@@ -26,7 +26,12 @@ ContactTerms makeContactTerms(const Scene& scene, const Garment& garment,
     for (const auto& [panel, fabric] : scene.panelFabrics) mu = std::max(mu, fabric.friction);
     setup.frictionCoefficient = mu;
   }
-  terms.energies = collision::makeContactEnergies(setup, garment.vertexCount(), garment.triangles, garment.stitchPairs);
+  // Non-conforming seams: their edge stitches are excluded from cloth-cloth contact like the vertex pairs.
+  std::vector<newton::EdgeStitch> edgeStitches;
+  edgeStitches.reserve(garment.edgeStitches.size());
+  for (const GarmentEdgeStitch& e : garment.edgeStitches) edgeStitches.push_back({e.vertex, e.a, e.b, e.t});
+  terms.energies = collision::makeContactEnergies(setup, garment.vertexCount(), garment.triangles, garment.stitchPairs,
+                                                  edgeStitches);
   for (const auto& energy : terms.energies)
     if (const auto* avatar = dynamic_cast<const collision::AvatarContactEnergy*>(energy.get()))
       terms.avatarEnergy = avatar;

@@ -10,6 +10,7 @@
 #include "drape/collision/avatar_collider.h"
 #include "drape/collision/avatar_contact.h"
 #include "drape/collision/friction.h"
+#include "drape/newton/cloth_model.h"
 #include "drape/newton/energy.h"
 
 namespace drape::collision {
@@ -19,15 +20,16 @@ struct ContactSetup {
   ContactParameters avatarContact;
   bool selfCollision = false;
   ContactParameters selfContact;
-  double selfMargin = 0.0;        // extra BVH search radius beyond the thickness, metres (0: = thickness)
+  double selfMargin = 0.0;           // extra BVH search radius beyond the thickness, metres (0: = thickness)
   double frictionCoefficient = 0.0;  // mu; 0 creates no friction energy
   double frictionEpsV = 1e-3;        // m/s, see FrictionParameters
 };
 
-// Garment: vertexCount vertices, triangles |F| x 3, stitched vertex pairs (never repel each other).
+// Garment: vertexCount vertices, triangles |F| x 3, stitched vertex pairs and edge stitches (non-conforming
+// seams); neither repels across its seam (contactMergedVertices, self_contact.h).
 // The friction energy, when created, points at the contact energies in the same list: keep the list together.
-std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(const ContactSetup& setup, int vertexCount,
-                                                                 const Eigen::MatrixX3i& triangles,
-                                                                 const std::vector<std::pair<int, int>>& stitches);
+std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(
+    const ContactSetup& setup, int vertexCount, const Eigen::MatrixX3i& triangles,
+    const std::vector<std::pair<int, int>>& stitches, const std::vector<newton::EdgeStitch>& edgeStitches = {});
 
 }  // namespace drape::collision

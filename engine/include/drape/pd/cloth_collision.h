@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "drape/collision/bvh.h"
+#include "drape/newton/cloth_model.h"
 #include "drape/pd/cloth_ccd_guard.h"
 #include "drape/pd/contact_solve.h"
 
@@ -64,9 +65,14 @@ struct ClothResolveStats {
 class ClothContacts {
  public:
   // triangles: |F| x 3 over vertexCount vertices; stitches: vertex pairs counted as one vertex (a closed seam
-  // must not repel itself); dofOfVertex: free DOF per vertex, -1 for pinned vertices (never constrained).
+  // must not repel itself); dofOfVertex: free DOF per vertex, -1 for pinned vertices (never constrained);
+  // edgeStitches (non-conforming seams): each vertex counts as one with the nearer end of its edge
+  // (collision::contactMergedVertices).
   ClothContacts(const Eigen::MatrixX3i& triangles, int vertexCount, const std::vector<std::pair<int, int>>& stitches,
-                std::vector<int> dofOfVertex, const ClothContactOptions& options);
+                std::vector<int> dofOfVertex, const ClothContactOptions& options,
+                const std::vector<newton::EdgeStitch>& edgeStitches = {});
+  // Representative of v's merged group (stitched vertices share one; v itself when not stitched).
+  int canonical(int v) const { return m_canonical[v]; }
   ~ClothContacts();
 
   // Start of a step: start and predicted are |V| x 3. Gathers the candidate pairs (parallel).
