@@ -244,6 +244,10 @@ TEST(PdContactTarget, ClothInACreaseConvergesWellBelowTheIterationCap) {
   s.contactTargets = ContactTargetKind::StepPlanes;
   s.domains = 2;
   s.threads = 2;
+  // pd-dd's strain constraint (shear held by the stretch weights): with the fabric's soft shear (60 vs 2000 N/m)
+  // the shear mode's slow L-G convergence keeps both kinds of target near any cap (measured: 53 vs 60 iterations
+  // per step at a cap of 60, 91 vs 99 at 100), which hides what this test compares.
+  s.shearModel = ShearModelKind::Stretch;
   const int steps = 120;
   const SettleResult now = settle(model, s, collider, steps);
   const SettleResult before = settle(model, firstVersion(s), collider, steps);
@@ -281,6 +285,11 @@ TEST(PdContactTarget, FrictionDoesNotLockTheLandingStretch) {
   s.domains = 2;
   s.threads = 2;
   s.friction = 0.4;
+  // pd-dd's strain constraint, shear held by the stretch weights: the lock this test guards against shows in a
+  // fabric stiff in shear. With the fabric's own shear (40 N/m) the cloth relaxes the landing by shearing and
+  // neither friction load locks a stretch (measured: warp/weft edges p95 2.9 % vs 3.0 %; all edges 10 %, the
+  // diagonals measuring the shear).
+  s.shearModel = ShearModelKind::Stretch;
   const int steps = 100;
   const SettleResult now = settle(model, s, collider, steps);
   const SettleResult before = settle(model, firstVersion(s), collider, steps);

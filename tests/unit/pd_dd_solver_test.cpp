@@ -164,18 +164,23 @@ TEST(PdSystemTest, HingeVectorVanishesOnAffineFields) {
 TEST(PdSystemTest, StrainProjectionIsRotationForRigidMotionAndClampsStretch) {
   const Eigen::Matrix3d rot = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   const Eigen::Matrix<double, 3, 2> f = rot.leftCols<2>();
-  EXPECT_LT((projectStrain(f, {}, {}, 0.0) - f).norm(), 1e-12);
-  // Stretch 1.2 along the warp with limits [0.9, 1.1] comes back to 1.1; weft 0.95 stays within [0.9, 1.1].
+  const StrainProjection rigid = projectStrain(f, {}, {}, 0.0);
+  EXPECT_LT((rigid.stretch - f).norm(), 1e-12);
+  EXPECT_LT((rigid.shear - f).norm(), 1e-12);
+  // Stretch 1.2 along the warp with limits [0.9, 1.1] comes back to 1.1; weft 0.95 stays within [0.9, 1.1]. The
+  // shear projection leaves the (unsheared) stretch alone.
   Eigen::Matrix<double, 3, 2> g = f;
   g.col(0) *= 1.2;
   g.col(1) *= 0.95;
-  const auto t = projectStrain(g, {0.9, 1.1}, {0.9, 1.1}, 0.0);
-  EXPECT_NEAR(t.col(0).norm(), 1.1, 1e-12);
-  EXPECT_NEAR(t.col(1).norm(), 0.95, 1e-12);
-  EXPECT_NEAR(t.col(0).dot(t.col(1)), 0.0, 1e-12);
-  // Collapsed triangle: still a finite orthonormal target.
-  const auto c = projectStrain(Eigen::Matrix<double, 3, 2>::Zero(), {}, {}, 0.0);
-  EXPECT_NEAR((c.transpose() * c - Eigen::Matrix2d::Identity()).norm(), 0.0, 1e-12);
+  const StrainProjection p = projectStrain(g, {0.9, 1.1}, {0.9, 1.1}, 0.0);
+  EXPECT_NEAR(p.stretch.col(0).norm(), 1.1, 1e-12);
+  EXPECT_NEAR(p.stretch.col(1).norm(), 0.95, 1e-12);
+  EXPECT_NEAR(p.stretch.col(0).dot(p.stretch.col(1)), 0.0, 1e-12);
+  EXPECT_LT((p.shear - g).norm(), 1e-12);
+  // Collapsed triangle: still a finite orthonormal stretch target.
+  const StrainProjection c = projectStrain(Eigen::Matrix<double, 3, 2>::Zero(), {}, {}, 0.0);
+  EXPECT_NEAR((c.stretch.transpose() * c.stretch - Eigen::Matrix2d::Identity()).norm(), 0.0, 1e-12);
+  EXPECT_TRUE(c.shear.allFinite());
 }
 
 }  // namespace

@@ -70,28 +70,38 @@ TEST(PdPreviewSolver, DecomposedAndMonolithicGiveTheSameStep) {
 }
 
 // pd-dd section 7.2, Fig. 12/13: with the exact global solve in both, Gauss-Seidel local steps need fewer L-G
-// iterations than Jacobi to reach the same tolerance on the hanging cloth, and both reach the same state.
+// iterations than Jacobi to reach the same tolerance on the hanging cloth, and both reach the same state. The
+// paper's strain constraint (shear held by the stretch weights) shows the gain; with the fabric's soft shear (60
+// vs 2000 N/m) both need about twice the iterations, the slow shear mode dominates and Gauss-Seidel is only not
+// worse (measured: 123 vs 123 at h = 1/120, 275 vs 288 at 1/60).
 TEST(PdPreviewSolver, GaussSeidelNeedsFewerIterationsThanJacobi) {
   const newton::ClothModel model = hangingCloth(30);
-  for (double h : {1.0 / 120.0, 1.0 / 60.0}) {
-    PreviewSettings s;
-    s.domains = 8;
-    s.maxIterations = 200;
-    s.tolerance = 1e-5;
-    s.timeStep = h;
-    s.localStep = LocalStepKind::GaussSeidel;
-    Eigen::VectorXd xg, xj;
-    const int steps = 10;
-    const int gs = totalIterations(model, s, steps, &xg);
-    s.localStep = LocalStepKind::Jacobi;
-    const int jacobi = totalIterations(model, s, steps, &xj);
-    std::printf("[ PdPreviewSolver ] h = 1/%.0f: L-G iterations over %d steps: Gauss-Seidel %d, Jacobi %d, "
-                "ratio Jacobi/GS %.2f\n", 1.0 / h, steps, gs, jacobi, static_cast<double>(jacobi) / gs);
-    EXPECT_LT(gs, jacobi);
-    EXPECT_LT(jacobi, steps * s.maxIterations);  // converged, not capped
-    // Same state to the accumulated tolerance (10 steps of 1e-5 of a 1 m cloth).
-    EXPECT_LT((xg - xj).cwiseAbs().maxCoeff(), 1e-3);
-  }
+  for (ShearModelKind shear : {ShearModelKind::Stretch, ShearModelKind::Fabric})
+    for (double h : {1.0 / 120.0, 1.0 / 60.0}) {
+      PreviewSettings s;
+      s.domains = 8;
+      s.maxIterations = 200;
+      s.tolerance = 1e-5;
+      s.timeStep = h;
+      s.shearModel = shear;
+      s.localStep = LocalStepKind::GaussSeidel;
+      Eigen::VectorXd xg, xj;
+      const int steps = 10;
+      const int gs = totalIterations(model, s, steps, &xg);
+      s.localStep = LocalStepKind::Jacobi;
+      const int jacobi = totalIterations(model, s, steps, &xj);
+      const bool paper = shear == ShearModelKind::Stretch;
+      std::printf("[ PdPreviewSolver ] %s shear, h = 1/%.0f: L-G iterations over %d steps: Gauss-Seidel %d, "
+                  "Jacobi %d, ratio Jacobi/GS %.2f\n", paper ? "stretch-held" : "fabric", 1.0 / h, steps, gs, jacobi,
+                  static_cast<double>(jacobi) / gs);
+      if (paper)
+        EXPECT_LT(gs, jacobi);
+      else
+        EXPECT_LE(gs, jacobi);
+      EXPECT_LT(jacobi, steps * s.maxIterations);  // converged, not capped
+      // Same state to the accumulated tolerance (10 steps of 1e-5 of a 1 m cloth).
+      EXPECT_LT((xg - xj).cwiseAbs().maxCoeff(), 1e-3);
+    }
 }
 
 TEST(PdPreviewSolver, TraversalOrdersAreSpanningAndStartAtPins) {

@@ -117,6 +117,7 @@ void LocalStep::gaussSeidel(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& b
   const auto& strains = m_system.strains();
   const StretchLimits warp = m_system.warpLimits(), weft = m_system.weftLimits();
   const double shear = m_system.shearLimit();
+  const bool stretchHoldsShear = m_system.stretchHoldsShear();
   tbb::parallel_for(0, static_cast<int>(m_domains.size()), [&](int j) {
     const Domain& dom = m_domains[j];
     const int nl = static_cast<int>(dom.vertices.size());
@@ -139,13 +140,14 @@ void LocalStep::gaussSeidel(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& b
       Eigen::Matrix3d xs;
       for (int c = 0; c < 3; ++c) xs.row(c) = xl.row(lv[c]);
       const StrainTarget f = xs.transpose() * sc.g;
-      const StrainTarget target = projectStrain(f, warp, weft, shear);
+      const StrainTarget target = combinedTarget(sc, projectStrain(f, warp, weft, shear, stretchHoldsShear));
       const StrainTarget delta = target - targets[t];
       targets[t] = target;
       for (int c = 0; c < 3; ++c) {
         const int l = lv[c];
         if (dom.freeDof[l] < 0) continue;
-        bl.row(l) += (sc.weightWarp * sc.g(c, 0) * delta.col(0) + sc.weightWeft * sc.g(c, 1) * delta.col(1)).transpose();
+        bl.row(l) += (sc.columnWeight(0) * sc.g(c, 0) * delta.col(0) + sc.columnWeight(1) * sc.g(c, 1) * delta.col(1))
+                         .transpose();
       }
       // Relax the triangle's free vertices: one Gauss-Seidel update of K x = b each (consistent: a fixed point
       // of the L-G iteration is left unchanged).

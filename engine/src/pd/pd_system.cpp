@@ -30,8 +30,8 @@ Eigen::Vector3d anyOrthogonal(const Eigen::Vector3d& u) {
 
 }  // namespace
 
-Eigen::Matrix<double, 3, 2> projectStrain(const Eigen::Matrix<double, 3, 2>& f, const StretchLimits& warp,
-                                          const StretchLimits& weft, double shearLimit) {
+StrainProjection projectStrain(const Eigen::Matrix<double, 3, 2>& f, const StretchLimits& warp,
+                               const StretchLimits& weft, double shearLimit, bool stretchHoldsShear) {
   const Eigen::Matrix2d c = f.transpose() * f;
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
   eig.computeDirect(c);
@@ -54,13 +54,33 @@ Eigen::Matrix<double, 3, 2> projectStrain(const Eigen::Matrix<double, 3, 2>& f, 
     r.col(longer) = u;
     r.col(other) = w;
   }
-  Eigen::Matrix2d s = r.transpose() * f;
-  Eigen::Matrix2d target;
-  target(0, 0) = std::clamp(s(0, 0), warp.min, warp.max);
-  target(1, 1) = std::clamp(s(1, 1), weft.min, weft.max);
-  const double shear = std::clamp(0.5 * (s(0, 1) + s(1, 0)), -shearLimit, shearLimit);
-  target(0, 1) = target(1, 0) = shear;
-  return r * target;
+  const Eigen::Matrix2d s = r.transpose() * f;
+  Eigen::Matrix2d stretch = s;
+  stretch(0, 0) = std::clamp(s(0, 0), warp.min, warp.max);
+  stretch(1, 1) = std::clamp(s(1, 1), weft.min, weft.max);
+  Eigen::Matrix2d shear = s;
+  shear(0, 1) = shear(1, 0) = std::clamp(0.5 * (s(0, 1) + s(1, 0)), -shearLimit, shearLimit);
+  if (stretchHoldsShear) stretch(0, 1) = stretch(1, 0) = shear(0, 1);
+  return {r * stretch, r * shear};
+}
+
+Eigen::Matrix<double, 3, 2> combinedTarget(const StrainConstraint& sc, const StrainProjection& p) {
+  Eigen::Matrix<double, 3, 2> out;
+  for (int c = 0; c < 2; ++c) {
+    const double ws = c == 0 ? sc.weightWarp : sc.weightWeft;
+    const double total = ws + sc.weightShear;
+    out.col(c) = total > 0.0 ? Eigen::Vector3d((ws * p.stretch.col(c) + sc.weightShear * p.shear.col(c)) / total)
+                             : Eigen::Vector3d(p.stretch.col(c));
+  }
+  return out;
+}
+
+double strainEnergy(const StrainConstraint& sc, const Eigen::Matrix<double, 3, 2>& f, const StretchLimits& warp,
+                    const StretchLimits& weft, double shearLimit, bool stretchHoldsShear) {
+  const StrainProjection p = projectStrain(f, warp, weft, shearLimit, stretchHoldsShear);
+  const Eigen::Matrix<double, 3, 2> ds = f - p.stretch, dh = f - p.shear;
+  return 0.5 * (sc.weightWarp * ds.col(0).squaredNorm() + sc.weightWeft * ds.col(1).squaredNorm() +
+                sc.weightShear * dh.squaredNorm());
 }
 
 Eigen::Vector4d hingeVector(const Eigen::Vector2d& r0, const Eigen::Vector2d& r1, const Eigen::Vector2d& r2,
@@ -73,7 +93,8 @@ Eigen::Vector4d hingeVector(const Eigen::Vector2d& r0, const Eigen::Vector2d& r1
 
 PdSystem::PdSystem(const newton::ClothModel& model, const PreviewSettings& settings)
     : m_h(settings.timeStep), m_triangles(model.triangles), m_gravity(model.gravity), m_warp(settings.warpLimits),
-      m_weft(settings.weftLimits), m_shearLimit(settings.shearLimit) {
+      m_weft(settings.weftLimits), m_shearLimit(settings.shearLimit),
+      m_stretchHoldsShear(settings.shearModel == ShearModelKind::Stretch) {
   const int nv = model.numVertices();
   const int nt = static_cast<int>(model.triangles.rows());
   m_vertexCount = nv;
@@ -144,6 +165,7 @@ PdSystem::PdSystem(const newton::ClothModel& model, const PreviewSettings& setti
       sc.g.row(0) = -(inv.row(0) + inv.row(1));
       sc.weightWarp = fab.stretchWarp * area;
       sc.weightWeft = fab.stretchWeft * area;
+      sc.weightShear = m_stretchHoldsShear ? 0.0 : fab.shear * area;
       for (int k = 0; k < 3; ++k) m_mass[tri[k]] += fab.density * area / 3.0;
     }
     maxStretch = std::max({maxStretch, fab.stretchWarp, fab.stretchWeft});
@@ -151,8 +173,8 @@ PdSystem::PdSystem(const newton::ClothModel& model, const PreviewSettings& setti
     st.size = 3;
     st.ownerTriangle = t;
     for (int k = 0; k < 3; ++k) st.vertices[k] = tri[k];
-    st.q.topLeftCorner<3, 3>() =
-        sc.weightWarp * sc.g.col(0) * sc.g.col(0).transpose() + sc.weightWeft * sc.g.col(1) * sc.g.col(1).transpose();
+    st.q.topLeftCorner<3, 3>() = sc.columnWeight(0) * sc.g.col(0) * sc.g.col(0).transpose() +
+                                 sc.columnWeight(1) * sc.g.col(1) * sc.g.col(1).transpose();
     m_stencils.push_back(st);
     m_strains.push_back(sc);
   }
@@ -250,12 +272,24 @@ PdSystem::PdSystem(const newton::ClothModel& model, const PreviewSettings& setti
     for (int k = 0; k < 3; ++k) m_incTriangles[fill[model.triangles(t, k)]++] = t;
 }
 
-Eigen::Matrix<double, 3, 2> PdSystem::project(int i, const Eigen::MatrixX3d& x) const {
+Eigen::Matrix<double, 3, 2> PdSystem::deformationGradient(int i, const Eigen::MatrixX3d& x) const {
   const StrainConstraint& sc = m_strains[i];
   Eigen::Matrix3d xs;
   for (int k = 0; k < 3; ++k) xs.row(k) = x.row(sc.vertices[k]);
-  const Eigen::Matrix<double, 3, 2> f = xs.transpose() * sc.g;
-  return projectStrain(f, m_warp, m_weft, m_shearLimit);
+  return xs.transpose() * sc.g;
+}
+
+Eigen::Matrix<double, 3, 2> PdSystem::project(int i, const Eigen::MatrixX3d& x) const {
+  return combinedTarget(m_strains[i],
+                        projectStrain(deformationGradient(i, x), m_warp, m_weft, m_shearLimit, m_stretchHoldsShear));
+}
+
+double PdSystem::strainEnergy(const Eigen::MatrixX3d& x) const {
+  double sum = 0.0;
+  for (int i = 0; i < triangleCount(); ++i)
+    sum += pd::strainEnergy(m_strains[i], deformationGradient(i, x), m_warp, m_weft, m_shearLimit,
+                            m_stretchHoldsShear);
+  return sum;
 }
 
 Eigen::MatrixX3d PdSystem::rhs(const Eigen::MatrixX3d& z,
@@ -271,7 +305,8 @@ Eigen::MatrixX3d PdSystem::rhs(const Eigen::MatrixX3d& z,
         const int t = m_incTriangles[k];
         const StrainConstraint& sc = m_strains[t];
         const int local = sc.vertices[0] == v ? 0 : (sc.vertices[1] == v ? 1 : 2);
-        acc += sc.weightWarp * sc.g(local, 0) * targets[t].col(0) + sc.weightWeft * sc.g(local, 1) * targets[t].col(1);
+        acc += sc.columnWeight(0) * sc.g(local, 0) * targets[t].col(0) +
+               sc.columnWeight(1) * sc.g(local, 1) * targets[t].col(1);
       }
       b.row(d) = acc.transpose();
     }

@@ -119,6 +119,8 @@ pd::PreviewSettings previewSettingsFrom(const Scene& scene) {
                                                                                : pd::ContactTargetKind::Reproject;
   p.frictionLoad = s.text("solver.preview.friction_load") == "collision_free" ? pd::FrictionLoadKind::CollisionFree
                                                                                : pd::FrictionLoadKind::Inertial;
+  p.shearModel = s.text("solver.preview.shear_model") == "stretch" ? pd::ShearModelKind::Stretch
+                                                                  : pd::ShearModelKind::Fabric;
   p.relaxationTime = s.number("solver.preview.relaxation_time");
   p.contactThickness = contactThickness(scene);
   p.sdIterations = s.integer("solver.preview.sd_iterations");

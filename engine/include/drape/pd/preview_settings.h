@@ -18,6 +18,11 @@ enum class ContactTargetKind { StepPlanes, Reproject };
 // (gravity and momentum only) / the collision-free solve's penetration (also the cloth's own tension pulling it
 // into the body, which lets a stretch, once landed, hold itself in place by friction).
 enum class FrictionLoadKind { Inertial, CollisionFree };
+// What resists in-plane shear in the strain constraints (pd_system.h): a shear constraint weighted with the
+// fabric's shear stiffness, the StVK membrane's small-strain energy (accurate; a soft shear mode under stiff
+// stretch needs more L-G iterations) / pd-dd's strain constraint R clamp(S), shear resisted with the stretch
+// weights (converges faster; 10-100 x too stiff in shear for woven fabrics).
+enum class ShearModelKind { Fabric, Stretch };
 
 // Allowed range of the principal stretch along one fabric direction (1 = rest length). Inside the range the
 // strain constraint exerts no force (strain limiting); the default [1, 1] pulls towards the rest shape.
@@ -44,7 +49,8 @@ struct PreviewSettings {
   StretchLimits warpLimits;       // along pattern x
   StretchLimits weftLimits;       // along pattern y
   double shearLimit = 0.0;        // |off-diagonal stretch| allowed without force
-  double stitchWeight = 0.0;      // N/m per stitch; 0 = 10 x the largest triangle weight in the model
+  ShearModelKind shearModel = ShearModelKind::Fabric;
+  double stitchWeight = 0.0;      // N/m per stitch; 0 = 10 x the largest stretch stiffness in the model
   double bendingScale = 1.0;      // multiplies the fabric bending stiffness
   double velocityDamping = 0.0;   // fraction of velocity removed per step, in [0, 1)
   // Seconds of scene time from the start during which velocities are zeroed after every step: the garment
