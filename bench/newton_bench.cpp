@@ -10,8 +10,10 @@
 // --motion-start moves the start (and end, keeping the rate) of every moving pin to S seconds, so that a short
 // window shows the twist; --repeat R runs the whole list of configurations R times, interleaved, and keeps the
 // fastest run of each (the loaded-machine noise only ever adds time); --memory prints the peak resident memory (VmHWM) per 100k DOFs, run it alone.
+// --reuse-steps N: the Hessian reuse limit of feature "reuse" (default 4); --forcing F: the forcing of "forcing"
+// (default 0.5).
 // Configurations: a base "on" (every speed-up on) or "off" (all off) followed by "+X" / "-X" modifiers, e.g.
-// "off+bending+map", "on-reorder". X in {bending, map, parallel, fold, reorder, fused, warm, mixed}. "all" = off,
+// "off+bending+map", "on-reorder". X in {bending, map, parallel, fold, reorder, fused, warm, mixed, forcing, reuse}. "all" = off,
 // on and every on-X; "table7" = the cumulative sequence off, off+bending, ... , on (newton-drape-pizana Table 7).
 #include <sys/resource.h>
 
@@ -35,22 +37,34 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// The speed-up switches: name, setting key (scene mode), NewtonSettings member (cloth mode).
+// Steps an elastic Hessian may be reused with feature "reuse" on (solver.newton.hessian_reuse_steps; --reuse-steps).
+int g_reuseSteps = 4;
+// The inexact-Newton forcing of feature "forcing" (solver.cg.forcing; --forcing).
+double g_forcing = 0.5;
+
+// The speed-up switches: name, setting key (scene mode), NewtonSettings setter (cloth mode); a switch that is not
+// boolean gives its scene value on / off.
 struct Feature {
   const char* name;
   const char* key;
-  bool* (*field)(NewtonSettings&);
+  void (*set)(NewtonSettings&, bool on);
+  std::string (*sceneValue)(bool on) = [](bool on) { return std::string(on ? "true" : "false"); };
 };
 const std::vector<Feature>& features() {
   static const std::vector<Feature> list = {
-      {"bending", "solver.newton.closed_form_bending", [](NewtonSettings& s) { return &s.closedFormBending; }},
-      {"map", "solver.newton.block_map", [](NewtonSettings& s) { return &s.cachedBlockMap; }},
-      {"parallel", "solver.newton.parallel_assembly", [](NewtonSettings& s) { return &s.parallelAssembly; }},
-      {"fold", "solver.newton.fold_dissipation", [](NewtonSettings& s) { return &s.foldDissipation; }},
-      {"reorder", "solver.newton.reorder_dofs", [](NewtonSettings& s) { return &s.reorderDofs; }},
-      {"fused", "solver.cg.fused_kernels", [](NewtonSettings& s) { return &s.linear.fusedKernels; }},
-      {"warm", "solver.cg.warm_start", [](NewtonSettings& s) { return &s.linear.warmStart; }},
-      {"mixed", "solver.cg.mixed_precision", [](NewtonSettings& s) { return &s.linear.mixedPrecision; }},
+      {"bending", "solver.newton.closed_form_bending", [](NewtonSettings& s, bool on) { s.closedFormBending = on; }},
+      {"map", "solver.newton.block_map", [](NewtonSettings& s, bool on) { s.cachedBlockMap = on; }},
+      {"parallel", "solver.newton.parallel_assembly", [](NewtonSettings& s, bool on) { s.parallelAssembly = on; }},
+      {"fold", "solver.newton.fold_dissipation", [](NewtonSettings& s, bool on) { s.foldDissipation = on; }},
+      {"reorder", "solver.newton.reorder_dofs", [](NewtonSettings& s, bool on) { s.reorderDofs = on; }},
+      {"fused", "solver.cg.fused_kernels", [](NewtonSettings& s, bool on) { s.linear.fusedKernels = on; }},
+      {"warm", "solver.cg.warm_start", [](NewtonSettings& s, bool on) { s.linear.warmStart = on; }},
+      {"mixed", "solver.cg.mixed_precision", [](NewtonSettings& s, bool on) { s.linear.mixedPrecision = on; }},
+      {"forcing", "solver.cg.forcing", [](NewtonSettings& s, bool on) { s.cgForcing = on ? g_forcing : 0.0; },
+       [](bool on) { return std::to_string(on ? g_forcing : 0.0); }},
+      {"reuse", "solver.newton.hessian_reuse_steps",
+       [](NewtonSettings& s, bool on) { s.hessianReuseSteps = on ? g_reuseSteps : 0; },
+       [](bool on) { return std::to_string(on ? g_reuseSteps : 0); }},
   };
   return list;
 }
@@ -173,7 +187,7 @@ Result runCloth(int n, double h, int steps, int warmup, const std::vector<bool>&
   NewtonSettings s;
   s.relaxation = false;
   s.hMax = h;
-  for (size_t k = 0; k < on.size(); ++k) *features()[k].field(s) = on[k];
+  for (size_t k = 0; k < on.size(); ++k) features()[k].set(s, on[k]);
   NewtonSolver solver(hangingCloth(n), s);
   for (int k = 0; k < warmup; ++k) solver.step();
   Result r;
@@ -211,7 +225,7 @@ drape::Scene loadBenchScene(const SceneOptions& o, const std::vector<bool>& on) 
   drape::SceneRequest request;
   request.input = o.file;
   request.overrides = o.overrides;
-  for (size_t k = 0; k < on.size(); ++k) request.overrides.emplace_back(features()[k].key, on[k] ? "true" : "false");
+  for (size_t k = 0; k < on.size(); ++k) request.overrides.emplace_back(features()[k].key, features()[k].sceneValue(on[k]));
   request.overrides.emplace_back("solver.max_sim_time", std::to_string(o.simTime));
   drape::Scene scene = drape::loadScene(request);
   if (o.motionStart >= 0.0)
@@ -307,6 +321,10 @@ int main(int argc, char** argv) try {
       warmup = std::atoi(value.c_str());
     } else if (key == "--configs") {
       configs = expandConfigs(value);
+    } else if (key == "--forcing") {
+      g_forcing = std::atof(value.c_str());
+    } else if (key == "--reuse-steps") {
+      g_reuseSteps = std::max(1, std::atoi(value.c_str()));
     } else if (key == "--repeat") {
       repeat = std::max(1, std::atoi(value.c_str()));
     } else if (key == "--scene") {

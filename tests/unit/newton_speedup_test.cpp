@@ -21,40 +21,11 @@
 #include "drape/newton/stencil_set.h"
 #include "drape/newton/strain_rate_damping.h"
 #include "drape/newton/stvk_membrane.h"
+#include "newton_test_cloths.h"
 
 using namespace drape::newton;
 
 namespace {
-
-// n x n grid of spacing d, anisotropic fabric, random 3D perturbation of amplitude `noise` * d.
-ClothModel grid(int n, double d, double noise, unsigned seed) {
-  ClothModel m;
-  m.restCoords.resize(n * n, 2);
-  m.positions.resize(3 * n * n);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-noise * d, noise * d);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      m.restCoords.row(i * n + j) << j * d, i * d;
-      m.positions.segment<3>(3 * (i * n + j)) << 1.05 * j * d + u(rng), i * d + u(rng), u(rng);
-    }
-  m.triangles.resize(2 * (n - 1) * (n - 1), 3);
-  int t = 0;
-  for (int i = 0; i + 1 < n; ++i)
-    for (int j = 0; j + 1 < n; ++j) {
-      int a = i * n + j, b = a + 1, c = a + n, e = c + 1;
-      m.triangles.row(t++) << a, b, e;
-      m.triangles.row(t++) << a, e, c;
-    }
-  TriangleFabric f;
-  f.stretchWarp = 5000.0;
-  f.stretchWeft = 3000.0;
-  f.shear = 200.0;
-  f.bendWarp = 5e-6;
-  f.bendWeft = 2e-6;
-  m.fabrics = {f};
-  return m;
-}
 
 StepContext context(const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, bool fast) {
   StepContext ctx{&x0, &v0, 1e-3, 0.0, 0.7, {}};
@@ -93,7 +64,7 @@ void expectSameAssembly(Energy& e, const Eigen::VectorXd& x, const Eigen::Vector
 TEST(NewtonSpeedup, ClosedFormHingeGradientMatchesAutodiff) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  ClothModel m = grid(2, 1.0, 0.0, 1);
+  ClothModel m = gridCloth(2, 1.0, 0.0, 1);
   HingeBending bending(m);
   ASSERT_EQ(bending.hinges().size(), 1u);
   const Hinge h = bending.hinges()[0];
@@ -111,7 +82,7 @@ TEST(NewtonSpeedup, ClosedFormHingeGradientMatchesAutodiff) {
 }
 
 TEST(NewtonSpeedup, ColouringSeparatesStencilsSharingAVertex) {
-  ClothModel m = grid(15, 0.01, 0.1, 2);
+  ClothModel m = gridCloth(15, 0.01, 0.1, 2);
   HingeBending bending(m);
   std::vector<std::array<int, 4>> hinges;
   for (const auto& h : bending.hinges()) hinges.push_back(h.v);
@@ -135,7 +106,7 @@ TEST(NewtonSpeedup, ColouringSeparatesStencilsSharingAVertex) {
 TEST(NewtonSpeedup, ChunkScheduleSeparatesChunksSharingAVertex) {
   tbb::task_arena arena(4);
   arena.execute([] {
-    ClothModel m = grid(60, 0.01, 0.1, 2);
+    ClothModel m = gridCloth(60, 0.01, 0.1, 2);
     HingeBending bending(m);
     std::vector<std::array<int, 4>> hinges;
     for (const auto& h : bending.hinges()) hinges.push_back(h.v);
@@ -157,7 +128,7 @@ TEST(NewtonSpeedup, ChunkScheduleSeparatesChunksSharingAVertex) {
     }
     for (int count : seen) EXPECT_EQ(count, 1);
     // The same assembly through the chunk schedule as through the serial loop.
-    Eigen::VectorXd x0 = grid(60, 0.01, 0.1, 3).positions;
+    Eigen::VectorXd x0 = gridCloth(60, 0.01, 0.1, 3).positions;
     Eigen::VectorXd gSerial = Eigen::VectorXd::Zero(x0.size()), gParallel = gSerial;
     HingeBending serial(m), parallel(m);
     Eigen::VectorXd v0 = Eigen::VectorXd::Zero(x0.size());
@@ -173,7 +144,7 @@ TEST(NewtonSpeedup, ChunkScheduleSeparatesChunksSharingAVertex) {
 TEST(NewtonSpeedup, ChunkScheduleFallsBackWithoutLocality) {
   tbb::task_arena arena(4);
   arena.execute([] {
-    ClothModel m = grid(60, 0.01, 0.1, 2);
+    ClothModel m = gridCloth(60, 0.01, 0.1, 2);
     std::vector<int> relabel(m.numVertices());
     std::iota(relabel.begin(), relabel.end(), 0);
     std::shuffle(relabel.begin(), relabel.end(), std::mt19937(7));
@@ -189,8 +160,8 @@ TEST(NewtonSpeedup, ChunkScheduleFallsBackWithoutLocality) {
 // The one-pass gradient + Hessian of the first Newton iteration equals the separate passes, with the speed-ups
 // off and on.
 TEST(NewtonSpeedup, FusedGradientAndHessianEqualSeparatePasses) {
-  ClothModel m = grid(30, 0.01, 0.3, 3);
-  Eigen::VectorXd x0 = grid(30, 0.01, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(x0.size());
+  ClothModel m = gridCloth(30, 0.01, 0.3, 3);
+  Eigen::VectorXd x0 = gridCloth(30, 0.01, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(x0.size());
   StvkMembrane membrane(m);
   HingeBending bending(m);
   MembraneDissipation stretch(membrane.elements(), 1e-2);
@@ -213,8 +184,8 @@ TEST(NewtonSpeedup, FusedGradientAndHessianEqualSeparatePasses) {
 // Folding the dissipations into the membrane's and the bending's passes assembles the same gradient and Hessian
 // as the four energies on their own.
 TEST(NewtonSpeedup, FoldedDissipationsAssembleTheSameSum) {
-  ClothModel m = grid(30, 0.01, 0.3, 3);
-  Eigen::VectorXd x0 = grid(30, 0.01, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(x0.size());
+  ClothModel m = gridCloth(30, 0.01, 0.3, 3);
+  Eigen::VectorXd x0 = gridCloth(30, 0.01, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(x0.size());
   StvkMembrane membrane(m);
   HingeBending bending(m);
   MembraneDissipation stretch(membrane.elements(), 1e-2);
@@ -253,8 +224,8 @@ TEST(NewtonSpeedup, FoldedDissipationsAssembleTheSameSum) {
 }
 
 TEST(NewtonSpeedup, FastAssemblyEqualsSerialSearchAssembly) {
-  ClothModel m = grid(30, 0.01, 0.3, 3);  // 841 vertices: colours large enough to run in parallel chunks
-  Eigen::VectorXd x0 = grid(30, 0.01, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(x0.size());
+  ClothModel m = gridCloth(30, 0.01, 0.3, 3);  // 841 vertices: colours large enough to run in parallel chunks
+  Eigen::VectorXd x0 = gridCloth(30, 0.01, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(x0.size());
   StvkMembrane membrane(m);
   expectSameAssembly(membrane, m.positions, x0, v0);
   HingeBending bending(m);
@@ -267,7 +238,7 @@ TEST(NewtonSpeedup, FastAssemblyEqualsSerialSearchAssembly) {
 
 TEST(NewtonSpeedup, SolverResultsIndependentOfSwitches) {
   const int n = 12;
-  ClothModel m = grid(n, 1.0 / (n - 1), 0.0, 5);
+  ClothModel m = gridCloth(n, 1.0 / (n - 1), 0.0, 5);
   m.pinned = {n * (n - 1), n * n - 1};
   Eigen::VectorXd reference;
   for (int config = 0; config < 2; ++config) {
@@ -289,7 +260,7 @@ TEST(NewtonSpeedup, SolverResultsIndependentOfSwitches) {
 
 namespace {
 
-// Couplings of an n x n grid triangulated as grid() (edges and diagonals), vertices renamed by a seeded shuffle
+// Couplings of an n x n grid triangulated as gridCloth() (edges and diagonals), vertices renamed by a seeded shuffle
 // so that the input numbering has a large bandwidth.
 std::vector<std::pair<int, int>> shuffledGridCouplings(int n, unsigned seed, std::vector<int>* name = nullptr) {
   std::vector<int> id(n * n);
@@ -462,7 +433,7 @@ TEST(NewtonSpeedup, WarmStartNeedsFewerIterations) {
 
 TEST(NewtonSpeedup, SolverSwitchesReachTheSameState) {
   const int n = 25;  // 625 vertices: the fused kernels run in two parallel chunks
-  ClothModel m = grid(n, 1.0 / (n - 1), 0.0, 14);
+  ClothModel m = gridCloth(n, 1.0 / (n - 1), 0.0, 14);
   m.pinned = {n * (n - 1), n * n - 1};
   auto run = [&m](const std::function<void(NewtonSettings&)>& configure) {
     NewtonSettings s;

@@ -1,11 +1,14 @@
 #include "drape/newton/block_matrix.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cassert>
 #include <cstdlib>
+#include <stdexcept>
+#include <string>
 
 #include "drape/newton/dof_ordering.h"
 
@@ -53,6 +56,16 @@ void BlockMatrix::build(int numBlocks, const std::vector<std::pair<int, int>>& c
 
 void BlockMatrix::setZero() {
   for (auto& b : m_blocks) b.setZero();
+  m_dynamic.clear();
+}
+
+void BlockMatrix::setStaticValues(const std::vector<Eigen::Matrix3d>& values) {
+  if (values.size() != m_blocks.size())
+    throw std::invalid_argument("block matrix: " + std::to_string(values.size()) + " saved blocks for a pattern of " +
+                                std::to_string(m_blocks.size()));
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, values.size(), 16384), [&](const tbb::blocked_range<size_t>& r) {
+    std::copy(values.begin() + r.begin(), values.begin() + r.end(), m_blocks.begin() + r.begin());
+  });
   m_dynamic.clear();
 }
 

@@ -79,6 +79,7 @@ NewtonSolver::NewtonSolver(ClothModel model, NewtonSettings settings, std::vecto
     bend->setFolded(true);
     m_energies.push_back(std::move(bend));
   }
+  m_elasticCount = m_energies.size();
   for (auto& e : extra) m_energies.push_back(std::move(e));
 
   std::vector<std::pair<int, int>> couplings;
@@ -148,6 +149,37 @@ void NewtonSolver::momentumResidual(const Eigen::VectorXd& g, const Eigen::Vecto
   for (int i = 0; i < m_mass.size(); ++i) b.segment<3>(3 * i) += m_mass(i) * (m_v.segment<3>(3 * i) - v.segment<3>(3 * i));
 }
 
+bool NewtonSolver::assembleFirstIteration(const Eigen::VectorXd& x, double h, Eigen::VectorXd& g) {
+  const bool reuse = m_settings.hessianReuseSteps > 0 && m_elasticHessianH == h &&
+                     m_elasticHessianAge < m_settings.hessianReuseSteps && m_lastNewtonIterations == 1 &&
+                     m_elasticHessian.size() == size_t(m_matrix.staticBlockCount());
+  if (reuse) {
+    m_matrix.setStaticValues(m_elasticHessian);
+    for (size_t k = 0; k < m_elasticCount; ++k) m_energies[k]->addGradient(x, g);
+    ++m_elasticHessianAge;
+  } else {
+    m_matrix.setZero();
+    for (size_t k = 0; k < m_elasticCount; ++k) m_energies[k]->addGradientAndHessian(x, g, m_matrix);
+    saveElasticHessian(h);
+  }
+  for (size_t k = m_elasticCount; k < m_energies.size(); ++k) m_energies[k]->addGradientAndHessian(x, g, m_matrix);
+  return reuse;
+}
+
+void NewtonSolver::assembleHessian(const Eigen::VectorXd& x, double h) {
+  m_matrix.setZero();
+  for (size_t k = 0; k < m_elasticCount; ++k) m_energies[k]->addHessian(x, m_matrix);
+  saveElasticHessian(h);
+  for (size_t k = m_elasticCount; k < m_energies.size(); ++k) m_energies[k]->addHessian(x, m_matrix);
+}
+
+void NewtonSolver::saveElasticHessian(double h) {
+  if (m_settings.hessianReuseSteps <= 0) return;
+  m_elasticHessian = m_matrix.blocks();
+  m_elasticHessianH = h;
+  m_elasticHessianAge = 0;
+}
+
 NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, Eigen::VectorXd& v,
                                    NewtonStepReport& report) {
   StepContext ctx{&m_x, &m_v, h, m_time, scale, assemblyOptions()};
@@ -159,8 +191,7 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
   // The first iteration needs the gradient and the Hessian at the same x: one pass over the stencils.
   auto t0 = Clock::now();
   Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
-  m_matrix.setZero();
-  for (const auto& e : m_energies) e->addGradientAndHessian(x, g, m_matrix);
+  report.hessianReused = assembleFirstIteration(x, h, g);
   momentumResidual(g, v, h, b);
   report.hessianSeconds += secondsSince(t0);
   if (!b.allFinite()) return NewtonStatus::Diverged;
@@ -172,10 +203,7 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
     if (m_cancel.load()) return NewtonStatus::Cancelled;
     // (M + h^2 H) dv = b, solved as (M / h^2 + H) dv = b / h^2.
     t0 = Clock::now();
-    if (it > 0) {
-      m_matrix.setZero();
-      for (const auto& e : m_energies) e->addHessian(x, m_matrix);
-    }
+    if (it > 0) assembleHessian(x, h);
     for (int i = 0; i < m_mass.size(); ++i) m_matrix.diagonalBlock(i).diagonal().array() += m_mass(i) * invH2;
     report.hessianSeconds += secondsSince(t0);
     t0 = Clock::now();
@@ -185,7 +213,10 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
       dv = (h / m_lastDvH) * m_lastDv;
     else
       dv.resize(0);
-    LinearSolveResult ls = solveLinear(m_matrix, b * invH2, dv, m_settings.linear);
+    LinearSolveOptions linear = m_settings.linear;
+    if (m_settings.cgForcing > 0.0 && rn > 0.0)
+      linear.tolerance = std::max(linear.tolerance, std::min(0.5, m_settings.cgForcing * m_settings.tauNewton / rn));
+    LinearSolveResult ls = solveLinear(m_matrix, b * invH2, dv, linear);
     report.linearSolveSeconds += secondsSince(t0);
     ++report.newtonIterations;
     report.cgIterations += ls.iterations;
@@ -252,6 +283,7 @@ NewtonStepReport NewtonSolver::step() {
     m_h *= s.omega;
   }
   m_x = x;
+  m_lastNewtonIterations = static_cast<int>(report.residualHistory.size()) - 1;
   m_lastDv = v - m_v;
   m_lastDvH = m_h;
   m_v = relaxing ? Eigen::VectorXd::Zero(v.size()) : v;  // relaxation zeroes velocities after every step (5.2)

@@ -72,6 +72,7 @@ newton::NewtonSettings newtonSettingsFrom(const Settings& s) {
   n.earlyStopThreshold = s.number("solver.newton.early_stop_threshold");
   n.earlyStopWindow = s.number("solver.newton.early_stop_window");
   n.linear.tolerance = s.number("solver.cg.tolerance");
+  n.cgForcing = s.number("solver.cg.forcing");
   n.linear.maxIterations = s.integer("solver.cg.max_iterations");
   n.linear.mixedPrecision = s.flag("solver.cg.mixed_precision");
   n.linear.warmStart = s.flag("solver.cg.warm_start");
@@ -81,6 +82,7 @@ newton::NewtonSettings newtonSettingsFrom(const Settings& s) {
   n.cachedBlockMap = s.flag("solver.newton.block_map");
   n.parallelAssembly = s.flag("solver.newton.parallel_assembly");
   n.foldDissipation = s.flag("solver.newton.fold_dissipation");
+  n.hessianReuseSteps = s.integer("solver.newton.hessian_reuse_steps");
   const std::string& pre = s.text("solver.cg.preconditioner");
   if (pre == "cholmod_direct") {
     n.linear.kind = newton::LinearSolverKind::Cholmod;

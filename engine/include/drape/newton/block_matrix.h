@@ -35,6 +35,10 @@ class BlockMatrix {
 
   // Zeroes every static value (pattern kept) and clears the dynamic part.
   void setZero();
+  // Replaces every static value by values (a copy of blocks() taken on this pattern) and clears the dynamic part:
+  // restores a saved part of the matrix (the Newton solver's reused Hessian). Throws std::invalid_argument on a
+  // size mismatch.
+  void setStaticValues(const std::vector<Eigen::Matrix3d>& values);
 
   // Hessian accumulation: H_ij += b and, when i != j, H_ji += b^T. Call once per unordered pair and stencil.
   // Pairs in the static pattern go there (thread-safe when no two threads touch the same block, e.g. with

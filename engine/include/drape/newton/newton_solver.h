@@ -48,6 +48,17 @@ struct NewtonSettings {
   // Reverse Cuthill-McKee renumbering of the matrix block rows (6.4): locality of SpMV and Hessian writes.
   bool reorderDofs = true;
   // (Warm-started PCG, fused parallel PCG kernels and mixed precision are switches of `linear`.)
+  // Hessian reuse (not in the paper; a speed/accuracy trade-off of this engine): the first Newton iteration of a
+  // step may solve with the elastic part of the previous step's Hessian (membrane, bending, dissipations, drag,
+  // stitches, pins; contact, friction and the drag spring are always fresh) when that part is at most this many
+  // steps old, the step size is unchanged and the previous step converged in one iteration. The residual test is
+  // unchanged, so a step still ends below tau_n; a step needing a second iteration assembles afresh. 0 = off.
+  int hessianReuseSteps = 0;
+  // Inexact-Newton forcing (not in the paper): the PCG of an iteration whose residual is r stops at the relative
+  // tolerance max(tau_cg, min(0.5, cgForcing * tau_n / r)), i.e. once the linear residual is a fraction cgForcing
+  // of the Newton tolerance, instead of always reducing it 1 / tau_cg times. The step still ends below tau_n.
+  // 0 = off (always tau_cg).
+  double cgForcing = 0.0;
 };
 
 class PinSprings;
@@ -73,6 +84,7 @@ struct NewtonStepReport {
   double hessianSeconds = 0.0;
   double gradientSeconds = 0.0;
   double linearSolveSeconds = 0.0;
+  bool hessianReused = false;  // the first iteration solved with a reused elastic Hessian (hessianReuseSteps)
 };
 
 class NewtonSolver {
@@ -126,6 +138,21 @@ class NewtonSolver {
   double m_h = 0.0;
   int m_goodSteps = 0;
   double m_restSince = -1.0;
+  // Assembles the first iteration's gradient g and Hessian (m_matrix, without the mass term) at x: the elastic
+  // part reused when allowed (returns true), otherwise assembled and saved for reuse.
+  bool assembleFirstIteration(const Eigen::VectorXd& x, double h, Eigen::VectorXd& g);
+  // The Hessian of a later iteration at x, saving the elastic part for reuse.
+  void assembleHessian(const Eigen::VectorXd& x, double h);
+  // Copies the static values of m_matrix as the reusable elastic Hessian (settings.hessianReuseSteps > 0).
+  void saveElasticHessian(double h);
+
+  // m_energies[0, m_elasticCount) are the solver's own smooth terms (reusable Hessian); the rest (contact,
+  // friction, the drag spring) are assembled afresh every iteration.
+  size_t m_elasticCount = 0;
+  std::vector<Eigen::Matrix3d> m_elasticHessian;  // static blocks of the elastic terms' Hessian, storage order
+  double m_elasticHessianH = 0.0;                 // step size it was assembled for (0: none saved)
+  int m_elasticHessianAge = 0;                    // steps it has been reused
+  int m_lastNewtonIterations = 0;                 // Newton iterations of the last accepted step (last attempt)
   // Velocity change of the last accepted step (3|V|, m/s) and its h (s): the PCG initial guess of the next step.
   Eigen::VectorXd m_lastDv;
   double m_lastDvH = 0.0;

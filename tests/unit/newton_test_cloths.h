@@ -1,0 +1,40 @@
+// Small cloth models shared by the Newton solver tests.
+#pragma once
+
+#include <random>
+
+#include "drape/newton/cloth_model.h"
+
+namespace drape::newton {
+
+// n x n grid of spacing d, anisotropic fabric, random 3D perturbation of amplitude `noise` * d.
+inline ClothModel gridCloth(int n, double d, double noise, unsigned seed) {
+  ClothModel m;
+  m.restCoords.resize(n * n, 2);
+  m.positions.resize(3 * n * n);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-noise * d, noise * d);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      m.restCoords.row(i * n + j) << j * d, i * d;
+      m.positions.segment<3>(3 * (i * n + j)) << 1.05 * j * d + u(rng), i * d + u(rng), u(rng);
+    }
+  m.triangles.resize(2 * (n - 1) * (n - 1), 3);
+  int t = 0;
+  for (int i = 0; i + 1 < n; ++i)
+    for (int j = 0; j + 1 < n; ++j) {
+      int a = i * n + j, b = a + 1, c = a + n, e = c + 1;
+      m.triangles.row(t++) << a, b, e;
+      m.triangles.row(t++) << a, e, c;
+    }
+  TriangleFabric f;
+  f.stretchWarp = 5000.0;
+  f.stretchWeft = 3000.0;
+  f.shear = 200.0;
+  f.bendWarp = 5e-6;
+  f.bendWeft = 2e-6;
+  m.fabrics = {f};
+  return m;
+}
+
+}  // namespace drape::newton
