@@ -119,7 +119,15 @@ int runBench(const CliOptions& options, std::ostream& out) {
   };
   row(ref);
   for (const auto& r : runs) row(r);
+  // Distances to a reference that did not finish its drape measure nothing: say so and fail.
+  const bool referenceOk = ref.status == "AtRest" || ref.status == "MaxSimTime";
+  report["reference_status"] = ref.status;
   if (!options.output.empty()) writeFileAtomically(options.output, report.dump(2) + "\n");
+  if (!referenceOk) {
+    out << "drape --bench: the reference drape ended " << ref.status << " at t = " << ref.simTime
+        << " s, so the distances above are to its last good state and not meaningful\n";
+    return 1;
+  }
   return 0;
 }
 

@@ -10,10 +10,10 @@
 // --motion-start moves the start (and end, keeping the rate) of every moving pin to S seconds, so that a short
 // window shows the twist; --repeat R runs the whole list of configurations R times, interleaved, and keeps the
 // fastest run of each (the loaded-machine noise only ever adds time); --memory prints the peak resident memory (VmHWM) per 100k DOFs, run it alone.
-// --reuse-steps N: the Hessian reuse limit of feature "reuse" (default 4); --forcing F: the forcing of "forcing"
-// (default 0.5).
+// --reuse-steps N: the Hessian reuse limit of feature "reuse" (default 4). (solver.cg.forcing trades accuracy, so
+// it is no feature here: measure it with --set.)
 // Configurations: a base "on" (every speed-up on) or "off" (all off) followed by "+X" / "-X" modifiers, e.g.
-// "off+bending+map", "on-reorder". X in {bending, map, parallel, fold, reorder, fused, warm, mixed, forcing, reuse}. "all" = off,
+// "off+bending+map", "on-reorder". X in {bending, map, parallel, fold, reorder, fused, warm, mixed, reuse}. "all" = off,
 // on and every on-X; "table7" = the cumulative sequence off, off+bending, ... , on (newton-drape-pizana Table 7).
 #include <sys/resource.h>
 
@@ -39,8 +39,6 @@ using Clock = std::chrono::steady_clock;
 
 // Steps an elastic Hessian may be reused with feature "reuse" on (solver.newton.hessian_reuse_steps; --reuse-steps).
 int g_reuseSteps = 4;
-// The inexact-Newton forcing of feature "forcing" (solver.cg.forcing; --forcing).
-double g_forcing = 0.5;
 
 // The speed-up switches: name, setting key (scene mode), NewtonSettings setter (cloth mode); a switch that is not
 // boolean gives its scene value on / off.
@@ -60,8 +58,6 @@ const std::vector<Feature>& features() {
       {"fused", "solver.cg.fused_kernels", [](NewtonSettings& s, bool on) { s.linear.fusedKernels = on; }},
       {"warm", "solver.cg.warm_start", [](NewtonSettings& s, bool on) { s.linear.warmStart = on; }},
       {"mixed", "solver.cg.mixed_precision", [](NewtonSettings& s, bool on) { s.linear.mixedPrecision = on; }},
-      {"forcing", "solver.cg.forcing", [](NewtonSettings& s, bool on) { s.cgForcing = on ? g_forcing : 0.0; },
-       [](bool on) { return std::to_string(on ? g_forcing : 0.0); }},
       {"reuse", "solver.newton.hessian_reuse_steps",
        [](NewtonSettings& s, bool on) { s.hessianReuseSteps = on ? g_reuseSteps : 0; },
        [](bool on) { return std::to_string(on ? g_reuseSteps : 0); }},
@@ -321,8 +317,6 @@ int main(int argc, char** argv) try {
       warmup = std::atoi(value.c_str());
     } else if (key == "--configs") {
       configs = expandConfigs(value);
-    } else if (key == "--forcing") {
-      g_forcing = std::atof(value.c_str());
     } else if (key == "--reuse-steps") {
       g_reuseSteps = std::max(1, std::atoi(value.c_str()));
     } else if (key == "--repeat") {

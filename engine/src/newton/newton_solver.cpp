@@ -223,6 +223,7 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
     if (!ls.ok) return NewtonStatus::Diverged;
     // Backtracking line search halving the step until the residual decreases (Algorithm 1, lines 15-27).
     bool accepted = false;
+    bool fullStep = false;
     double f = 1.0;
     for (int k = 0; k < m_settings.maxLineSearchIterations && !accepted; ++k, f *= 0.5) {
       vls = v + f * dv;
@@ -233,6 +234,7 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
       double r = bls.norm();
       if (std::isfinite(r) && r < rn) {
         accepted = true;
+        fullStep = k == 0;
         rn = r;
         v.swap(vls);
         x.swap(xls);
@@ -241,6 +243,10 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
     }
     report.residual = rn;
     if (accepted) report.residualHistory.push_back(rn);
+    // A reused Hessian counts only when its full Newton step was taken: after backtracking (the old matrix no
+    // longer fits) the step iterates on with a fresh one, even below tau_n (near rest tau_n alone would accept
+    // velocities that keep the garment from settling).
+    if (it == 0 && report.hessianReused && !fullStep) continue;
     if (!accepted) return rn < m_settings.tauNewton ? NewtonStatus::Converged : NewtonStatus::Diverged;
     if (rn < m_settings.tauNewton) return NewtonStatus::Converged;
   }

@@ -96,7 +96,7 @@ const std::vector<SettingSpec>& Settings::specs() {
        "closed-form hinge-angle gradient (false: automatic differentiation)"},
       {"solver.newton.block_map", T::Boolean, "true", "", "precomputed stencil -> matrix block map (6.1)"},
       {"solver.newton.parallel_assembly", T::Boolean, "true", "", "stencil colouring + TBB assembly (6.5)"},
-      {"solver.newton.hessian_reuse_steps", T::Integer, "0", "",
+      {"solver.newton.hessian_reuse_steps", T::Integer, "4", "",
        "steps the elastic part of the Hessian may be reused by a step's first Newton iteration (0: always fresh)", 0,
        1000},
       {"solver.newton.fold_dissipation", T::Boolean, "true", "",

@@ -48,12 +48,13 @@ struct NewtonSettings {
   // Reverse Cuthill-McKee renumbering of the matrix block rows (6.4): locality of SpMV and Hessian writes.
   bool reorderDofs = true;
   // (Warm-started PCG, fused parallel PCG kernels and mixed precision are switches of `linear`.)
-  // Hessian reuse (not in the paper; a speed/accuracy trade-off of this engine): the first Newton iteration of a
-  // step may solve with the elastic part of the previous step's Hessian (membrane, bending, dissipations, drag,
-  // stitches, pins; contact, friction and the drag spring are always fresh) when that part is at most this many
-  // steps old, the step size is unchanged and the previous step converged in one iteration. The residual test is
-  // unchanged, so a step still ends below tau_n; a step needing a second iteration assembles afresh. 0 = off.
-  int hessianReuseSteps = 0;
+  // Hessian reuse (not in the paper): the first Newton iteration of a step may solve with the elastic part of an
+  // earlier step's Hessian (membrane, bending, dissipations, air drag, stitches, pins; contact, friction and the
+  // drag spring are always fresh) when that part is at most this many steps old, the step size is unchanged and
+  // the previous step converged in one iteration. The residual test is unchanged, so a step still ends below
+  // tau_n; a reused iteration whose line search had to shorten the step is followed by a fresh one (even below
+  // tau_n), and a step needing a second iteration assembles afresh. 0 = always fresh (the paper).
+  int hessianReuseSteps = 4;
   // Inexact-Newton forcing (not in the paper): the PCG of an iteration whose residual is r stops at the relative
   // tolerance max(tau_cg, min(0.5, cgForcing * tau_n / r)), i.e. once the linear residual is a fraction cgForcing
   // of the Newton tolerance, instead of always reducing it 1 / tau_cg times. The step still ends below tau_n.
