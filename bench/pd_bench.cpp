@@ -269,8 +269,8 @@ void interactiveTable(const std::string& sceneFile, int steps, double cap, const
       {"dual CG, warm, relax, tol 1e-2, hold", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.relaxationTime = 0.1; s.pcgTolerance = 1e-2; s.holdContactTargets = true; }},
       {"same, L-G cap 10", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.relaxationTime = 0.1; s.pcgTolerance = 1e-2; s.holdContactTargets = true; s.maxIterations = 10; }},
       {"same, L-G cap 10, Jacobi local", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.relaxationTime = 0.1; s.pcgTolerance = 1e-2; s.holdContactTargets = true; s.maxIterations = 10; s.localStep = LocalStepKind::Jacobi; }},
-      {"default, shear held by stretch (pd-dd)", [](PreviewSettings& s) { s.shearModel = ShearModelKind::Stretch; }},
-      {"same, L-G cap 10, shear held by stretch", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.relaxationTime = 0.1; s.pcgTolerance = 1e-2; s.holdContactTargets = true; s.maxIterations = 10; s.shearModel = ShearModelKind::Stretch; }},
+      {"default, fabric shear", [](PreviewSettings& s) { s.shearModel = ShearModelKind::Fabric; }},
+      {"same, L-G cap 10, fabric shear", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.relaxationTime = 0.1; s.pcgTolerance = 1e-2; s.holdContactTargets = true; s.maxIterations = 10; s.shearModel = ShearModelKind::Fabric; }},
   };
 
   std::printf("| variant | vertices | steps | steps/s | ms/step | collision | local | global | contact solve | L-G it | SD it "

@@ -44,13 +44,20 @@ newton::ClothModel deformedPatch(const newton::TriangleFabric& fab, const Eigen:
   return m;
 }
 
+// Preview settings with the fabric's shear stiffness in the strain term (the model these tests check).
+PreviewSettings fabricShear() {
+  PreviewSettings s;
+  s.shearModel = ShearModelKind::Fabric;
+  return s;
+}
+
 Eigen::MatrixX3d asRows(const Eigen::VectorXd& x) {
   return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(x.data(), x.size() / 3, 3);
 }
 
 // PD strain energy and StVK membrane energy of the patch under in-plane deformation a.
 std::pair<double, double> energies(const newton::TriangleFabric& fab, const Eigen::Matrix2d& a,
-                                   const PreviewSettings& s = {}) {
+                                   const PreviewSettings& s = fabricShear()) {
   const newton::ClothModel m = deformedPatch(fab, a);
   const PdSystem pd(m, s);
   const newton::StvkMembrane stvk(m);
@@ -78,7 +85,7 @@ TEST(PdShear, SmallPureShearEnergyMatchesStvkMembrane) {
 
 TEST(PdShear, SmallStretchEnergyMatchesStvkMembraneWithTightLimits) {
   const newton::TriangleFabric fab = fabric(5000.0, 3000.0, 250.0);
-  PreviewSettings s;
+  PreviewSettings s = fabricShear();
   s.warpLimits = {1.0, 1.0};
   s.weftLimits = {1.0, 1.0};
   for (const Eigen::Vector2d& d : {Eigen::Vector2d(1.01, 1.0), Eigen::Vector2d(1.0, 0.99),
@@ -107,7 +114,7 @@ TEST(PdShear, SmallStretchEnergyMatchesStvkMembraneWithTightLimits) {
 // costs A (kWarp + kWeft) / 2 s^2, the fabric's shear stiffness unused, and K has only the stretch weights.
 TEST(PdShear, StretchHeldShearIsThePaperConstraint) {
   const newton::TriangleFabric fab = fabric(5000.0, 3000.0, 250.0);
-  PreviewSettings s;
+  PreviewSettings s = fabricShear();
   s.shearModel = ShearModelKind::Stretch;
   const double shear = 0.005;
   const Eigen::Matrix2d a = (Eigen::Matrix2d() << 1.0, shear, shear, 1.0).finished();
@@ -153,7 +160,7 @@ TEST(PdShear, ProjectionsSplitStretchFromShear) {
 TEST(PdShear, SystemMatrixCarriesStretchPlusShearWeights) {
   const newton::TriangleFabric fab = fabric(5000.0, 3000.0, 250.0);
   const newton::ClothModel m = deformedPatch(fab, Eigen::Matrix2d::Identity());
-  const PdSystem pd(m, PreviewSettings{});
+  const PdSystem pd(m, fabricShear());
   const double area = 0.1 * (0.2 / 3.0) / 2.0;
   for (const StrainConstraint& sc : pd.strains()) {
     EXPECT_NEAR(sc.weightWarp, 5000.0 * area, 1e-9);
@@ -192,7 +199,7 @@ double shearedTopDisplacement(double shear, double* expected) {
   const double g = 20.0;
   m.gravity = Eigen::Vector3d(g, 0.0, 0.0);
   for (int i = 0; i < o.nx; ++i) m.pinned.push_back(i);
-  PreviewSettings s;
+  PreviewSettings s = fabricShear();
   s.timeStep = 0.05;  // quasi-static: the inertia term is small, the state settles within a few steps
   s.velocityDamping = 0.5;
   s.tolerance = 1e-9;

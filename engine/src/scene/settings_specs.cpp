@@ -52,9 +52,9 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"solver.preview.friction_load", T::Choice, "inertial", "",
        "normal load bounding friction: inertial prediction, or collision-free solve (incl. cloth tension)", -1e300,
        1e300, {"inertial", "collision_free"}},
-      {"solver.preview.shear_model", T::Choice, "fabric", "",
-       "what resists shear in the strain constraints: the fabric's shear stiffness, or the stretch weights (pd-dd; "
-       "faster L-G convergence, far too stiff in shear)", -1e300, 1e300, {"fabric", "stretch"}},
+      {"solver.preview.shear_model", T::Choice, "stretch", "",
+       "what resists shear in the strain constraints: the stretch weights (pd-dd; too stiff in shear, converges) or "
+       "the fabric's shear stiffness (accurate when converged; under-converged it over-shears)", -1e300, 1e300, {"fabric", "stretch"}},
       {"solver.preview.relaxation_time", T::Number, "0", "s",
        "velocities zeroed after every step until this scene time (quasi-static assembly)", 0, 1e4},
       {"solver.preview.sd_iterations", T::Integer, "1", "", "dual steepest-descent updates before PCG (eq. 24)", 1,

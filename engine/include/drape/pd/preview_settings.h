@@ -49,7 +49,7 @@ struct PreviewSettings {
   StretchLimits warpLimits;       // along pattern x
   StretchLimits weftLimits;       // along pattern y
   double shearLimit = 0.0;        // |off-diagonal stretch| allowed without force
-  ShearModelKind shearModel = ShearModelKind::Fabric;
+  ShearModelKind shearModel = ShearModelKind::Stretch;  // fabric: see the enum (converges too slowly yet)
   double stitchWeight = 0.0;      // N/m per stitch; 0 = 10 x the largest stretch stiffness in the model
   double bendingScale = 1.0;      // multiplies the fabric bending stiffness
   double velocityDamping = 0.0;   // fraction of velocity removed per step, in [0, 1)
