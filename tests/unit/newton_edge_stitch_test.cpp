@@ -16,6 +16,7 @@
 #include "drape/pattern/pattern_loader.h"
 #include "drape/scene/scene.h"
 #include "drape/sim/simulation.h"
+#include "newton_test_cloths.h"
 #include "shared_data.h"
 
 using namespace drape::newton;
@@ -47,27 +48,6 @@ Eigen::MatrixXd hessianOf(const Energy& e, const Eigen::VectorXd& x) {
   e.addHessian(x, h);
   EXPECT_EQ(h.dynamicBlockCount(), 0) << "Hessian blocks outside the static pattern";
   return Eigen::MatrixXd(h.toSparse());
-}
-
-// Vertical panel of nx x ny vertices, width x height metres, bottom-left corner at `origin`; rest coords from 0.
-void appendPanel(ClothModel& m, int nx, int ny, double width, double height, const Eigen::Vector3d& origin) {
-  const int base = m.numVertices();
-  m.restCoords.conservativeResize(base + nx * ny, 2);
-  m.positions.conservativeResize(3 * (base + nx * ny));
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const Eigen::Vector2d r(width * i / (nx - 1), height * j / (ny - 1));
-      m.restCoords.row(base + j * nx + i) = r.transpose();
-      m.positions.segment<3>(3 * (base + j * nx + i)) = origin + Eigen::Vector3d(r.x(), r.y(), 0.0);
-    }
-  int t = static_cast<int>(m.triangles.rows());
-  m.triangles.conservativeResize(t + 2 * (nx - 1) * (ny - 1), 3);
-  for (int j = 0; j + 1 < ny; ++j)
-    for (int i = 0; i + 1 < nx; ++i) {
-      const int a = base + j * nx + i, b = a + 1, c = a + nx, d = c + 1;
-      m.triangles.row(t++) << a, b, d;
-      m.triangles.row(t++) << a, d, c;
-    }
 }
 
 }  // namespace
@@ -146,7 +126,7 @@ TEST(NewtonEdgeStitch, GradientAndHessianMatchFiniteDifferences) {
 TEST(NewtonEdgeStitch, ValidationNamesTheBadStitch) {
   ClothModel m;
   m.fabrics = {TriangleFabric{}};
-  appendPanel(m, 3, 3, 0.1, 0.1, Eigen::Vector3d::Zero());  // 9 vertices
+  appendGridPanel(m, 3, 3, 0.1, 0.1, Eigen::Vector3d::Zero());  // 9 vertices
   auto message = [&](EdgeStitch e) -> std::string {
     ClothModel bad = m;
     bad.edgeStitches = {EdgeStitch{0, 4, 5, 0.5}, e};
@@ -180,8 +160,8 @@ TEST(NewtonEdgeStitch, DrapeClosesANonConformingSeam) {
   cotton.stretchWarp = cotton.stretchWeft = 5000.0;
   cotton.shear = 250.0;
   m.fabrics = {cotton};
-  appendPanel(m, n1, n1, size, size, Eigen::Vector3d::Zero());
-  appendPanel(m, nx2, ny2, size, size, Eigen::Vector3d(size + gap, 0.0, 0.0));
+  appendGridPanel(m, n1, n1, size, size, Eigen::Vector3d::Zero());
+  appendGridPanel(m, nx2, ny2, size, size, Eigen::Vector3d(size + gap, 0.0, 0.0));
   const int base = n1 * n1;
   const double h1 = size / (n1 - 1);
   for (int j = 0; j < ny2; ++j) {

@@ -10,39 +10,11 @@
 #include "drape/newton/springs.h"
 #include "drape/newton/strain_rate_damping.h"
 #include "drape/newton/stvk_membrane.h"
+#include "newton_test_cloths.h"
 
 using namespace drape::newton;
 
 namespace {
-
-// n x n vertex grid of spacing d in the material frame, anisotropic fabric, random 3D perturbation.
-ClothModel smallCloth(int n, double d, unsigned seed) {
-  ClothModel m;
-  m.restCoords.resize(n * n, 2);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) m.restCoords.row(i * n + j) << j * d, i * d;
-  m.triangles.resize(2 * (n - 1) * (n - 1), 3);
-  int t = 0;
-  for (int i = 0; i + 1 < n; ++i)
-    for (int j = 0; j + 1 < n; ++j) {
-      int a = i * n + j, b = a + 1, c = a + n, e = c + 1;
-      m.triangles.row(t++) << a, b, e;
-      m.triangles.row(t++) << a, e, c;
-    }
-  TriangleFabric f;
-  f.stretchWarp = 5000.0;
-  f.stretchWeft = 3000.0;
-  f.shear = 200.0;
-  f.bendWarp = 5e-6;
-  f.bendWeft = 2e-6;
-  m.fabrics = {f};
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-0.3 * d, 0.3 * d);
-  m.positions.resize(3 * n * n);
-  for (int v = 0; v < n * n; ++v)
-    m.positions.segment<3>(3 * v) << 1.1 * m.restCoords(v, 0) + u(rng), m.restCoords(v, 1) + u(rng), u(rng);
-  return m;
-}
 
 Eigen::VectorXd gradientOf(const Energy& e, const Eigen::VectorXd& x) {
   Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
@@ -86,7 +58,7 @@ void checkEnergy(Energy& e, const Eigen::VectorXd& x, bool checkHessian, double 
 
 TEST(NewtonEnergy, MembraneGradientAndExactHessian) {
   for (unsigned seed : {1u, 2u, 3u}) {
-    ClothModel m = smallCloth(4, 0.05, seed);
+    ClothModel m = gridCloth(4, 0.05, 0.3, seed);
     StvkMembrane e(m);
     e.setExactHessian(true);
     checkEnergy(e, m.positions, true);
@@ -97,7 +69,7 @@ TEST(NewtonEnergy, MembraneGradientAndExactHessian) {
 
 TEST(NewtonEnergy, MembraneStrainMatchesStretch) {
   // Uniform 10% warp stretch: E00 = (1.1^2 - 1) / 2, energy = area * 0.5 * kWarp * E00^2.
-  ClothModel m = smallCloth(3, 0.1, 1);
+  ClothModel m = gridCloth(3, 0.1, 0.3, 1);
   for (int v = 0; v < 9; ++v) m.positions.segment<3>(3 * v) << 1.1 * m.restCoords(v, 0), m.restCoords(v, 1), 0.0;
   StvkMembrane e(m);
   double e00 = 0.5 * (1.21 - 1.0);
@@ -106,7 +78,7 @@ TEST(NewtonEnergy, MembraneStrainMatchesStretch) {
 
 TEST(NewtonEnergy, BendingGradientAndExactHessian) {
   for (unsigned seed : {4u, 5u, 6u}) {
-    ClothModel m = smallCloth(4, 0.05, seed);
+    ClothModel m = gridCloth(4, 0.05, 0.3, seed);
     HingeBending e(m);
     ASSERT_EQ(e.hinges().size(), 21u);  // 33 edges of a 4x4 grid minus 12 on the boundary
     e.setExactHessian(true);
@@ -118,7 +90,7 @@ TEST(NewtonEnergy, BendingGradientAndExactHessian) {
 
 TEST(NewtonEnergy, HingeAngleOfAKnownFold) {
   // Edge along x, wing 2 rotated by 90 degrees about it: |theta| = pi / 2; flat: 0.
-  ClothModel m = smallCloth(2, 1.0, 1);
+  ClothModel m = gridCloth(2, 1.0, 0.3, 1);
   HingeBending e(m);
   ASSERT_EQ(e.hinges().size(), 1u);
   Hinge h = e.hinges()[0];
@@ -133,7 +105,7 @@ TEST(NewtonEnergy, HingeAngleOfAKnownFold) {
 }
 
 TEST(NewtonEnergy, SpringsGravityDrag) {
-  ClothModel m = smallCloth(3, 0.1, 7);
+  ClothModel m = gridCloth(3, 0.1, 0.3, 7);
   StitchSprings stitches({{0, 8}, {2, 6}}, 1e3);
   checkEnergy(stitches, m.positions, true);
   PinSprings pins({1, 4}, {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 3)}, 1e3);
@@ -153,8 +125,8 @@ TEST(NewtonEnergy, SpringsGravityDrag) {
 }
 
 TEST(NewtonEnergy, DissipationPotentials) {
-  ClothModel m = smallCloth(4, 0.05, 8);
-  Eigen::VectorXd previous = smallCloth(4, 0.05, 9).positions, vel = Eigen::VectorXd::Zero(previous.size());
+  ClothModel m = gridCloth(4, 0.05, 0.3, 8);
+  Eigen::VectorXd previous = gridCloth(4, 0.05, 0.3, 9).positions, vel = Eigen::VectorXd::Zero(previous.size());
   StepContext ctx{&previous, &vel, 1e-3, 0.0, 1.0, {}};
   StvkMembrane membrane(m);
   MembraneDissipation stretch(membrane.elements(), 1e-2);

@@ -1,4 +1,4 @@
-// Small cloth models shared by the Newton solver tests.
+// Small cloth models shared by the Newton solver and contact tests.
 #pragma once
 
 #include <random>
@@ -35,6 +35,28 @@ inline ClothModel gridCloth(int n, double d, double noise, unsigned seed) {
   f.bendWeft = 2e-6;
   m.fabrics = {f};
   return m;
+}
+
+// Vertical panel of nx x ny vertices, width x height metres, bottom-left corner at `origin`, appended to m; rest
+// coords from 0.
+inline void appendGridPanel(ClothModel& m, int nx, int ny, double width, double height, const Eigen::Vector3d& origin) {
+  const int base = m.numVertices();
+  m.restCoords.conservativeResize(base + nx * ny, 2);
+  m.positions.conservativeResize(3 * (base + nx * ny));
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const Eigen::Vector2d r(width * i / (nx - 1), height * j / (ny - 1));
+      m.restCoords.row(base + j * nx + i) = r.transpose();
+      m.positions.segment<3>(3 * (base + j * nx + i)) = origin + Eigen::Vector3d(r.x(), r.y(), 0.0);
+    }
+  int t = static_cast<int>(m.triangles.rows());
+  m.triangles.conservativeResize(t + 2 * (nx - 1) * (ny - 1), 3);
+  for (int j = 0; j + 1 < ny; ++j)
+    for (int i = 0; i + 1 < nx; ++i) {
+      const int a = base + j * nx + i, b = a + 1, c = a + nx, d = c + 1;
+      m.triangles.row(t++) << a, b, d;
+      m.triangles.row(t++) << a, d, c;
+    }
 }
 
 }  // namespace drape::newton

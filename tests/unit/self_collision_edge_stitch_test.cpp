@@ -16,33 +16,14 @@
 #include "drape/newton/newton_solver.h"
 #include "drape/pd/cloth_collision.h"
 #include "drape/pd/contact_solve.h"
+#include "newton_test_cloths.h"
 
 namespace drape {
 namespace {
 
 using newton::ClothModel;
 using newton::EdgeStitch;
-
-// Vertical panel of nx x ny vertices, width x height metres, bottom-left corner at origin; rest coords from 0.
-void appendPanel(ClothModel& m, int nx, int ny, double width, double height, const Eigen::Vector3d& origin) {
-  const int base = m.numVertices();
-  m.restCoords.conservativeResize(base + nx * ny, 2);
-  m.positions.conservativeResize(3 * (base + nx * ny));
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const Eigen::Vector2d r(width * i / (nx - 1), height * j / (ny - 1));
-      m.restCoords.row(base + j * nx + i) = r.transpose();
-      m.positions.segment<3>(3 * (base + j * nx + i)) = origin + Eigen::Vector3d(r.x(), r.y(), 0.0);
-    }
-  int t = static_cast<int>(m.triangles.rows());
-  m.triangles.conservativeResize(t + 2 * (nx - 1) * (ny - 1), 3);
-  for (int j = 0; j + 1 < ny; ++j)
-    for (int i = 0; i + 1 < nx; ++i) {
-      const int a = base + j * nx + i, b = a + 1, c = a + nx, d = c + 1;
-      m.triangles.row(t++) << a, b, d;
-      m.triangles.row(t++) << a, d, c;
-    }
-}
+using newton::appendGridPanel;
 
 constexpr int kCoarse = 6;              // coarse panel: 6 x 6 vertices (4 cm spacing)
 constexpr int kFineX = 9, kFineY = 12;  // fine panel: 2.5 cm x 1.8 cm spacing (no stitch at t = 1/2)
@@ -56,8 +37,8 @@ ClothModel seamedPanels(double gap) {
   cotton.stretchWarp = cotton.stretchWeft = 5000.0;
   cotton.shear = 250.0;
   m.fabrics = {cotton};
-  appendPanel(m, kCoarse, kCoarse, kSize, kSize, Eigen::Vector3d::Zero());
-  appendPanel(m, kFineX, kFineY, kSize, kSize, Eigen::Vector3d(kSize + gap, 0.0, 0.0));
+  appendGridPanel(m, kCoarse, kCoarse, kSize, kSize, Eigen::Vector3d::Zero());
+  appendGridPanel(m, kFineX, kFineY, kSize, kSize, Eigen::Vector3d(kSize + gap, 0.0, 0.0));
   const int base = kCoarse * kCoarse;
   const double h1 = kSize / (kCoarse - 1);
   for (int j = 0; j < kFineY; ++j) {
