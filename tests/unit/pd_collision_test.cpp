@@ -136,6 +136,7 @@ DropResult fastDrop(bool ccd, int steps) {
   PreviewSettings s;
   s.ccd = ccd;
   s.domains = 2;
+  s.maxHalvings = 0;  // the whole drop in one step of h: a redone half step would not cross the sphere
   PreviewSolver solver(model, s, collider);
   DropResult out;
   for (int i = 0; i < steps; ++i) {

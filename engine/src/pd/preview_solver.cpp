@@ -1,6 +1,7 @@
 #include "drape/pd/preview_solver.h"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <functional>
 #include <stdexcept>
@@ -50,11 +51,22 @@ struct PreviewSolver::Impl {
   PreviewSettings settings;
   std::shared_ptr<const collision::AvatarCollider> collider;
   std::unique_ptr<tbb::task_arena> arena;
-  std::unique_ptr<PdSystem> system;
+  // The system, its global solver and local step for the time step settings.timeStep / 2^k (level k), built on
+  // first use from the kept model: K = M / h^2 + sum w A^T A changes with h.
+  struct Level {
+    std::unique_ptr<PdSystem> system;
+    std::unique_ptr<GlobalSolver> global;
+    std::unique_ptr<LocalStep> local;
+  };
+  newton::ClothModel model;
+  std::vector<Level> levels;
+  int level = 0;
+  int convergedInARow = 0;  // steps converged at the current level since it was entered
+  PdSystem* system = nullptr;  // of the current level
+  GlobalSolver* global = nullptr;
+  LocalStep* local = nullptr;
   std::vector<int> triangleDomain;
   int domains = 1;
-  std::unique_ptr<GlobalSolver> global;
-  std::unique_ptr<LocalStep> local;
   Eigen::MatrixX3d x, v;  // |V| x 3
   Eigen::VectorXd flatX, flatV;
   std::vector<StrainTarget> targets;
@@ -73,7 +85,13 @@ struct PreviewSolver::Impl {
   std::vector<int> lastContactDofs;   // contact set of the previous L-G iteration, for the churn count
   std::vector<char> churnScratch;
 
+  // One step, redone at half the time step while the L-G loop hits its cap and settings.maxHalvings allows;
+  // after settings.growAfterSteps converged steps the time step doubles back (towards settings.timeStep).
   PreviewReport step();
+  // One attempt at the current level's time step; commits x, v and time unless it diverged or was cancelled.
+  PreviewReport attempt();
+  // Makes level k (time step settings.timeStep / 2^k) current, building it on first use.
+  void useLevel(int k);
   // Appends the grabbed vertex's constraint (replacing a contact on the same DOF).
   void addDrag(ContactSet& contacts) const;
   // Contact constraints of one L-G iteration: vertices at the collision-free xFree (|free| x 3), cloth triangles
@@ -93,7 +111,10 @@ PreviewSolver::PreviewSolver(const newton::ClothModel& model, const PreviewSetti
   im.collider = std::move(collider);
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   im.arena = std::make_unique<tbb::task_arena>(threads);
-  im.system = std::make_unique<PdSystem>(model, settings);
+  im.model = model;
+  im.levels.resize(static_cast<size_t>(std::max(settings.maxHalvings, 0)) + 1);
+  im.levels[0].system = std::make_unique<PdSystem>(model, settings);
+  im.system = im.levels[0].system.get();
   const int nv = model.numVertices();
   im.x = asRows(model.positions, nv);
   im.v = model.velocities.size() == 3 * nv ? asRows(model.velocities, nv) : Eigen::MatrixX3d::Zero(nv, 3);
@@ -108,13 +129,7 @@ PreviewSolver::PreviewSolver(const newton::ClothModel& model, const PreviewSetti
   im.arena->execute([&] {
     im.triangleDomain =
         partitionTriangles(model.triangles, nv, model.stitches, model.edgeStitches, im.domains, settings.seed);
-    if (settings.globalSolver == GlobalSolverKind::Monolithic)
-      im.global = std::make_unique<MonolithicSolver>(im.system->matrix());
-    else
-      im.global = std::make_unique<DomainDecomposedSolver>(splitSystem(*im.system, im.triangleDomain, im.domains),
-                                                           im.system->freeCount(), settings.extraCornerStride);
-    im.local = std::make_unique<LocalStep>(*im.system, im.triangleDomain, im.domains, settings.traversalOrders,
-                                           settings.seed);
+    im.useLevel(0);
   });
   if (im.collider)
     im.avatar = std::make_unique<AvatarContacts>(
@@ -170,9 +185,74 @@ void PreviewSolver::Impl::resolveClothContacts(const Eigen::MatrixX3d& start, Pr
   rep.selfCrossed = st.remaining;
 }
 
+void PreviewSolver::Impl::useLevel(int k) {
+  Level& lv = levels[k];
+  if (!lv.system) {
+    PreviewSettings s = settings;
+    s.timeStep = std::ldexp(settings.timeStep, -k);
+    lv.system = std::make_unique<PdSystem>(model, s);  // moving pins: attempt() sets the targets
+  }
+  if (!lv.global) {
+    if (settings.globalSolver == GlobalSolverKind::Monolithic)
+      lv.global = std::make_unique<MonolithicSolver>(lv.system->matrix());
+    else
+      lv.global = std::make_unique<DomainDecomposedSolver>(splitSystem(*lv.system, triangleDomain, domains),
+                                                           lv.system->freeCount(), settings.extraCornerStride);
+    lv.local = std::make_unique<LocalStep>(*lv.system, triangleDomain, domains, settings.traversalOrders,
+                                           settings.seed);
+  }
+  level = k;
+  convergedInARow = 0;
+  system = lv.system.get();
+  global = lv.global.get();
+  local = lv.local.get();
+}
+
 PreviewReport PreviewSolver::Impl::step() {
   const auto start = Clock::now();
+  const Eigen::MatrixX3d x0 = x, v0 = v;
+  const double time0 = time;
+  PreviewReport total;
+  for (;;) {
+    const PreviewReport rep = attempt();
+    const int iterations = total.iterations + rep.iterations, sd = total.sdIterations + rep.sdIterations;
+    const int pcg = total.pcgIterations + rep.pcgIterations, churn = total.contactChurn + rep.contactChurn;
+    const double collisionTime = total.collisionTime + rep.collisionTime;
+    const double contactSolveTime = total.contactSolveTime + rep.contactSolveTime;
+    const double localTime = total.localTime + rep.localTime, globalTime = total.globalTime + rep.globalTime;
+    const int splits = total.splits;
+    total = rep;  // the last attempt's state; the work of every attempt
+    total.iterations = iterations;
+    total.sdIterations = sd;
+    total.pcgIterations = pcg;
+    total.contactChurn = churn;
+    total.collisionTime = collisionTime;
+    total.contactSolveTime = contactSolveTime;
+    total.localTime = localTime;
+    total.globalTime = globalTime;
+    total.splits = splits;
+    if (rep.status != PreviewStatus::MaxIterations || level + 1 >= static_cast<int>(levels.size())) break;
+    x = x0;
+    v = v0;
+    time = time0;
+    useLevel(level + 1);
+    ++total.splits;
+  }
+  if (total.status == PreviewStatus::Converged) {
+    if (++convergedInARow >= settings.growAfterSteps && level > 0) useLevel(level - 1);
+  } else {
+    convergedInARow = 0;
+  }
+  toFlat(x, flatX);
+  toFlat(v, flatV);
+  total.wallTime = seconds(start, Clock::now());
+  return total;
+}
+
+PreviewReport PreviewSolver::Impl::attempt() {
+  const auto start = Clock::now();
   PreviewReport rep;
+  rep.timeStep = system->timeStep();
   rep.domains = domains;
   if (pinTrajectory) {  // pins where they are at the end of the step
     Eigen::MatrixX3d moved(static_cast<int>(pinSource.size()), 3);
@@ -286,8 +366,6 @@ PreviewReport PreviewSolver::Impl::step() {
     if (!v.allFinite() || !x.allFinite()) restore(PreviewStatus::Diverged);
     else time += h;
   }
-  toFlat(x, flatX);
-  toFlat(v, flatV);
   rep.wallTime = seconds(start, Clock::now());
   return rep;
 }

@@ -107,6 +107,8 @@ pd::PreviewSettings previewSettingsFrom(const Scene& scene) {
   p.timeStep = s.number("solver.preview.time_step");
   p.tolerance = s.number("solver.preview.tolerance");
   p.maxIterations = s.integer("solver.preview.max_iterations");
+  p.maxHalvings = s.integer("solver.preview.max_halvings");
+  p.growAfterSteps = s.integer("solver.preview.grow_after_steps");
   p.domains = s.integer("solver.preview.domains");
   p.localStep = s.text("solver.preview.local_step") == "jacobi" ? pd::LocalStepKind::Jacobi : pd::LocalStepKind::GaussSeidel;
   p.globalSolver = s.text("solver.preview.global_solver") == "monolithic" ? pd::GlobalSolverKind::Monolithic

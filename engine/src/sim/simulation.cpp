@@ -208,7 +208,7 @@ StepReport Simulation::step() {
     const pd::PreviewReport r = preview.step();
     report.status = toStepStatus(r.status);
     report.stage = "preview";
-    report.h = preview.settings().timeStep;
+    report.h = r.timeStep;
     report.iterations = r.iterations;
     report.cgIterations = r.pcgIterations;
     report.residual = r.residual;
@@ -217,6 +217,7 @@ StepReport Simulation::step() {
     report.collisionTime = r.collisionTime;
     report.localTime = r.localTime;
     report.globalTime = r.globalTime;
+    report.splits = r.splits;
     const Eigen::VectorXd& v = preview.velocities();
     std::vector<double> energies(m_solver->masses.size()), speeds(m_solver->masses.size());
     for (Eigen::Index i = 0; i < m_solver->masses.size(); ++i) {

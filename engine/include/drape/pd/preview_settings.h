@@ -36,6 +36,12 @@ struct PreviewSettings {
   double tolerance = 1e-3;        // max vertex move of an L-G iteration / largest extent of the cloth's box
   int maxIterations = 30;         // cap on L-G iterations per step
   int minIterations = 1;
+  // A step whose L-G loop hits the cap is redone at half the time step, at most this many times below timeStep
+  // (0: never, as in the paper); growAfterSteps converged steps at a level double it back. Contact on body creases
+  // can keep the L-G loop from converging at 1/120 s (targets cycle between the crease's two surfaces, and the
+  // unconverged steps let the garment stretch and slide off the body); a smaller step converges.
+  int maxHalvings = 2;
+  int growAfterSteps = 10;
 
   int domains = 0;                // D; 0 = the number of threads
   int threads = 0;                // 0 = all hardware threads (TBB default)

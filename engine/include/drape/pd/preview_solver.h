@@ -42,6 +42,8 @@ struct PreviewReport {
   double globalTime = 0.0;     // seconds: collision-free solves
   double wallTime = 0.0;       // seconds, whole step
   int domains = 0;             // domains used by the global solve and the local step
+  double timeStep = 0.0;       // seconds: h of the step taken (settings.timeStep / 2^k, see step())
+  int splits = 0;              // attempts redone at half the time step because the L-G loop hit its cap
 };
 
 class PreviewSolver {
@@ -54,7 +56,10 @@ class PreviewSolver {
   PreviewSolver(const PreviewSolver&) = delete;
   PreviewSolver& operator=(const PreviewSolver&) = delete;
 
-  // One time step of settings.timeStep. Never throws for numerical trouble: non-finite positions restore the
+  // One time step of h = settings.timeStep / 2^k. An attempt whose L-G loop hits settings.maxIterations is redone
+  // from the step's start at h / 2, down to settings.timeStep / 2^settings.maxHalvings (where a capped step is
+  // kept); after settings.growAfterSteps converged steps h doubles back. The system of each h is factorised on
+  // first use and kept. Iterations and times in the report count every attempt. Never throws for numerical trouble: non-finite positions restore the
   // state before the step and report Diverged; a cancel request restores it and reports Cancelled.
   PreviewReport step();
   // Thread-safe; checked between L-G iterations.
