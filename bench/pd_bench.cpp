@@ -263,7 +263,10 @@ void interactiveTable(const std::string& sceneFile, int steps, double cap, const
       {"paper: SD + PCG (cap 20), cold", [](PreviewSettings& s) { s.contactSolve = K::DualThenPcg; s.contactWarmStart = false; }},
       {"SD + PCG, warm start", [](PreviewSettings& s) { s.contactSolve = K::DualThenPcg; }},
       {"dual CG (K_cc), cold", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.contactWarmStart = false; }},
-      {"dual CG, warm (default)", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; }},
+      {"dual CG, warm, fixed h", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.maxHalvings = 0; }},
+      {"dual CG, warm, halving", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; }},
+      {"factor, fixed h", [](PreviewSettings& s) { s.contactSolve = K::Factor; s.maxHalvings = 0; }},
+      {"factor, halving (default)", [](PreviewSettings& s) { s.contactSolve = K::Factor; }},
       {"dual CG, warm, relax 0.1 s", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.relaxationTime = 0.1; }},
       {"dual CG, warm, relax, tol 1e-2", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.relaxationTime = 0.1; s.pcgTolerance = 1e-2; }},
       {"dual CG, warm, relax, tol 1e-2, hold", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.relaxationTime = 0.1; s.pcgTolerance = 1e-2; s.holdContactTargets = true; }},
@@ -273,15 +276,15 @@ void interactiveTable(const std::string& sceneFile, int steps, double cap, const
       {"same, L-G cap 10, fabric shear", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.relaxationTime = 0.1; s.pcgTolerance = 1e-2; s.holdContactTargets = true; s.maxIterations = 10; s.shearModel = ShearModelKind::Fabric; }},
   };
 
-  std::printf("| variant | vertices | steps | steps/s | ms/step | collision | local | global | contact solve | L-G it | SD it "
+  std::printf("| variant | vertices | steps | steps/s | sim s/s | ms/step | collision | local | global | contact solve | L-G it | SD it "
               "| PCG it | contacts | churn | final inside | deepest mm |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Variant& variant : variants) {
     if (!only.empty() && variant.name.find(only) == std::string::npos) continue;
     PreviewSettings s = base;
     variant.apply(s);
     PreviewSolver solver(model, s, collider);
-    double wall = 0, coll = 0, local = 0, global = 0, contactSolve = 0;
+    double wall = 0, coll = 0, local = 0, global = 0, contactSolve = 0, simulated = 0;
     long lg = 0, sd = 0, pcg = 0, contacts = 0, churn = 0;
     int done = 0;
     bool diverged = false;
@@ -291,6 +294,7 @@ void interactiveTable(const std::string& sceneFile, int steps, double cap, const
       const PreviewReport r = solver.step();
       ++done;
       wall += r.wallTime;
+      simulated += r.timeStep;
       coll += r.collisionTime - r.contactSolveTime;
       contactSolve += r.contactSolveTime;
       local += r.localTime;
@@ -331,8 +335,8 @@ void interactiveTable(const std::string& sceneFile, int steps, double cap, const
         deepest = std::min(deepest, v);
       }
     const double n = std::max(done, 1);
-    std::printf("| %s | %d | %d%s | %.2f | %.0f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.0f | %.0f | %d | %.1f |\n",
-                variant.name.c_str(), nv, done, diverged ? " (diverged)" : "", done / wall, 1e3 * wall / n,
+    std::printf("| %s | %d | %d%s | %.2f | %.3f | %.0f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.0f | %.0f | %d | %.1f |\n",
+                variant.name.c_str(), nv, done, diverged ? " (diverged)" : "", done / wall, simulated / wall, 1e3 * wall / n,
                 1e3 * coll / n, 1e3 * local / n, 1e3 * global / n, 1e3 * contactSolve / n, lg / n, sd / n, pcg / n,
                 contacts / n, churn / n, deep, 1e3 * deepest);
     std::fflush(stdout);

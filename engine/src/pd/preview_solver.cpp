@@ -12,6 +12,7 @@
 #include "drape/collision/avatar_collider.h"
 #include "drape/pd/avatar_collision.h"
 #include "drape/pd/cloth_collision.h"
+#include "drape/pd/contact_factor.h"
 #include "drape/pd/contact_solve.h"
 #include "drape/pd/dd_solver.h"
 #include "drape/pd/domain_partition.h"
@@ -57,6 +58,7 @@ struct PreviewSolver::Impl {
     std::unique_ptr<PdSystem> system;
     std::unique_ptr<GlobalSolver> global;
     std::unique_ptr<LocalStep> local;
+    std::unique_ptr<ContactFactor> contactFactor;  // settings.contactSolve == Factor, built on first contact
   };
   newton::ClothModel model;
   std::vector<Level> levels;
@@ -65,6 +67,8 @@ struct PreviewSolver::Impl {
   PdSystem* system = nullptr;  // of the current level
   GlobalSolver* global = nullptr;
   LocalStep* local = nullptr;
+  // The collision-aware correction of xFree (the collision-free solve) for `contacts`, by settings.contactSolve.
+  ContactSolveStats solveContacts(const ContactSet& contacts, Eigen::MatrixX3d& xFree);
   std::vector<int> triangleDomain;
   int domains = 1;
   Eigen::MatrixX3d x, v;  // |V| x 3
@@ -328,10 +332,7 @@ PreviewReport PreviewSolver::Impl::attempt() {
       lastContactDofs = contacts.dofs;
       addDrag(contacts);
       const auto t3 = Clock::now();
-      const ContactSolveStats cs =
-          solveWithContacts(sys.matrix(), *global, contacts, settings.contactSolve, settings.maxPcgIterations,
-                            settings.pcgTolerance, xFree, settings.sdIterations,
-                            settings.contactWarmStart ? &contactWarm : nullptr, settings.maxDualIterations);
+      const ContactSolveStats cs = solveContacts(contacts, xFree);
       rep.contactSolveTime += seconds(t3, Clock::now());
       rep.contactResidual = cs.relativeResidual;
       rep.sdIterations += cs.sdIterations;
@@ -368,6 +369,21 @@ PreviewReport PreviewSolver::Impl::attempt() {
   }
   rep.wallTime = seconds(start, Clock::now());
   return rep;
+}
+
+ContactSolveStats PreviewSolver::Impl::solveContacts(const ContactSet& contacts, Eigen::MatrixX3d& xFree) {
+  if (settings.contactSolve == ContactSolveKind::Factor) {
+    Level& lv = levels[level];
+    if (!lv.contactFactor) lv.contactFactor = std::make_unique<ContactFactor>(system->matrix());
+    const Eigen::MatrixX3d collisionFree = xFree;
+    if (lv.contactFactor->solve(contacts, xFree)) return {};
+    xFree = collisionFree;  // not positive definite (cannot happen for K + diagonal): the iterative solve
+  }
+  const ContactSolveKind kind =
+      settings.contactSolve == ContactSolveKind::Factor ? ContactSolveKind::DualCgThenPcg : settings.contactSolve;
+  return solveWithContacts(system->matrix(), *global, contacts, kind, settings.maxPcgIterations, settings.pcgTolerance,
+                           xFree, settings.sdIterations, settings.contactWarmStart ? &contactWarm : nullptr,
+                           settings.maxDualIterations);
 }
 
 void PreviewSolver::Impl::addDrag(ContactSet& contacts) const {

@@ -116,6 +116,7 @@ pd::PreviewSettings previewSettingsFrom(const Scene& scene) {
   const std::string& contactSolve = s.text("solver.preview.contact_solve");
   p.contactSolve = contactSolve == "pcg"             ? pd::ContactSolveKind::Pcg
                    : contactSolve == "dual_then_pcg" ? pd::ContactSolveKind::DualThenPcg
+                   : contactSolve == "factor"        ? pd::ContactSolveKind::Factor
                                                      : pd::ContactSolveKind::DualCgThenPcg;
   p.pcgTolerance = s.number("solver.preview.pcg_tolerance");
   p.holdContactTargets = s.flag("solver.preview.hold_contact_targets");

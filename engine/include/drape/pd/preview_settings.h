@@ -8,8 +8,9 @@ namespace drape::pd {
 enum class GlobalSolverKind { DomainDecomposed, Monolithic };  // pd-dd section 4 / baseline CHOLMOD on eq. 3
 enum class LocalStepKind { GaussSeidel, Jacobi };              // pd-dd section 5 / vanilla PD baseline
 // pd-dd section 6 (eq. 24 + PCG) / plain PCG / the dual solved by conjugate gradients preconditioned by the
-// contact DOFs' block of K, then PCG (contact_solve.h)
-enum class ContactSolveKind { DualThenPcg, Pcg, DualCgThenPcg };
+// contact DOFs' block of K, then PCG (contact_solve.h) / a Cholesky factor of K + Delta K, refactorised when the
+// contact set changes (contact_factor.h)
+enum class ContactSolveKind { DualThenPcg, Pcg, DualCgThenPcg, Factor };
 // How avatar contact targets are found in the L-G iterations of a step (avatar_collision.h): from half-spaces
 // fixed per step (tangent planes at the step start's closest point, added to only where the real surface is
 // violated) / re-projected onto the closest surface point (or CCD crossing) in every iteration (the first version).
@@ -68,7 +69,7 @@ struct PreviewSettings {
   double contactThickness = 0.004;  // metres kept between cloth and avatar surface
   double contactWeight = 1e6;       // w_k of a contact constraint, N/m (pd-dd Tab. 1: kappa_c ~ 1e6)
   double contactMargin = 0.02;      // metres beyond the thickness where vertices are watched during a step
-  ContactSolveKind contactSolve = ContactSolveKind::DualCgThenPcg;
+  ContactSolveKind contactSolve = ContactSolveKind::Factor;
   int sdIterations = 1;             // dual steepest-descent updates before PCG (eq. 24), each one DD solve
   int maxDualIterations = 100;      // DualCgThenPcg: cap on dual CG iterations, each one DD solve
   int maxPcgIterations = 20;

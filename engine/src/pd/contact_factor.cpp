@@ -1,0 +1,133 @@
+#include "drape/pd/contact_factor.h"
+
+#include <cholmod.h>
+
+#include <cmath>
+
+namespace drape::pd {
+
+// CHOLMOD state: K + Delta K's lower triangle (values refreshed in place), its factor and workspace.
+struct ContactFactor::Cholmod {
+  cholmod_common common{};
+  Eigen::SparseMatrix<double> lower;  // lower triangle of K, then of K + Delta K
+  std::vector<int> diagonal;          // per column: index of the diagonal entry in lower's values
+  Eigen::VectorXd kDiagonal;          // K's diagonal
+  cholmod_sparse view{};
+  cholmod_factor* factor = nullptr;
+  cholmod_dense* rhs = nullptr;
+  Cholmod() { cholmod_start(&common); }
+  ~Cholmod() {
+    if (factor) cholmod_free_factor(&factor, &common);
+    if (rhs) cholmod_free_dense(&rhs, &common);
+    cholmod_finish(&common);
+  }
+};
+
+ContactFactor::ContactFactor(const Eigen::SparseMatrix<double>& k) : m_k(k), m_cholmod(std::make_unique<Cholmod>()) {
+  Cholmod& c = *m_cholmod;
+  const int n = static_cast<int>(k.rows());
+  c.lower = k.triangularView<Eigen::Lower>();
+  c.lower.makeCompressed();
+  c.diagonal.assign(n, -1);
+  c.kDiagonal = Eigen::VectorXd::Zero(n);
+  for (int j = 0; j < n; ++j)
+    for (int p = c.lower.outerIndexPtr()[j]; p < c.lower.outerIndexPtr()[j + 1]; ++p)
+      if (c.lower.innerIndexPtr()[p] == j) {
+        c.diagonal[j] = p;
+        c.kDiagonal[j] = c.lower.valuePtr()[p];
+      }
+  cholmod_sparse& v = c.view;
+  v.nrow = v.ncol = static_cast<size_t>(n);
+  v.nzmax = static_cast<size_t>(c.lower.nonZeros());
+  v.p = c.lower.outerIndexPtr();
+  v.i = c.lower.innerIndexPtr();
+  v.x = c.lower.valuePtr();
+  v.stype = -1;
+  v.itype = CHOLMOD_INT;
+  v.xtype = CHOLMOD_REAL;
+  v.dtype = CHOLMOD_DOUBLE;
+  v.sorted = 1;
+  v.packed = 1;
+  c.common.print = 0;
+  c.common.supernodal = CHOLMOD_SIMPLICIAL;  // no BLAS threads competing with TBB at these sizes
+  c.factor = cholmod_analyze(&v, &c.common);
+  c.rhs = cholmod_allocate_dense(static_cast<size_t>(n), 3, static_cast<size_t>(n), CHOLMOD_REAL, &c.common);
+}
+
+ContactFactor::~ContactFactor() = default;
+
+bool ContactFactor::updateFactor(const std::vector<double>& weight) {
+  Cholmod& c = *m_cholmod;
+  const int n = static_cast<int>(weight.size());
+  std::vector<int> up, down;
+  for (int d = 0; d < n; ++d) {
+    if (weight[d] > m_weight[d]) up.push_back(d);
+    else if (weight[d] < m_weight[d]) down.push_back(d);
+    if (static_cast<int>(up.size() + down.size()) > kMaxUpdates) return false;
+  }
+  // L L^T = P A P^T: the columns of C (sqrt(|dw|) e_d) are given in the factor's permuted row order.
+  const int* perm = static_cast<const int*>(c.factor->Perm);
+  std::vector<int> position(n);
+  for (int k = 0; k < n; ++k) position[perm[k]] = k;
+  const auto apply = [&](const std::vector<int>& dofs, int update) {
+    if (dofs.empty()) return true;
+    const size_t m = dofs.size();
+    cholmod_sparse* cs = cholmod_allocate_sparse(static_cast<size_t>(n), m, m, 1, 1, 0, CHOLMOD_REAL, &c.common);
+    if (!cs) return false;
+    int* colStart = static_cast<int*>(cs->p);
+    int* row = static_cast<int*>(cs->i);
+    double* value = static_cast<double*>(cs->x);
+    for (size_t k = 0; k < m; ++k) {
+      colStart[k] = static_cast<int>(k);
+      row[k] = position[dofs[k]];
+      value[k] = std::sqrt(std::abs(weight[dofs[k]] - m_weight[dofs[k]]));
+    }
+    colStart[m] = static_cast<int>(m);
+    const bool ok = cholmod_updown(update, cs, c.factor, &c.common) != 0 && c.factor->minor == c.factor->n;
+    cholmod_free_sparse(&cs, &c.common);
+    return ok;
+  };
+  if (!apply(up, 1) || !apply(down, 0)) return false;
+  return true;
+}
+
+bool ContactFactor::solve(const ContactSet& contacts, Eigen::MatrixX3d& x) {
+  Cholmod& c = *m_cholmod;
+  const int n = static_cast<int>(m_k.rows());
+  if (!c.factor || !c.rhs || x.rows() != n) return false;
+  if (contacts.size() == 0 && !m_factored) return true;  // x = K^-1 b already
+  for (int d : contacts.dofs)
+    if (d < 0 || d >= n || c.diagonal[d] < 0) return false;
+  m_next.assign(n, 0.0);
+  for (int k = 0; k < contacts.size(); ++k) m_next[contacts.dofs[k]] = contacts.weights[k];
+  if (m_weight.size() != static_cast<size_t>(n)) m_weight.assign(n, 0.0);
+  if (!m_factored || m_next != m_weight) {
+    if (m_factored && updateFactor(m_next)) {
+      ++m_updates;
+    } else {
+      double* value = c.lower.valuePtr();
+      for (int d = 0; d < n; ++d) value[c.diagonal[d]] = c.kDiagonal[d] + m_next[d];
+      m_factored = cholmod_factorize(&c.view, c.factor, &c.common) != 0 && c.factor->minor == c.factor->n;
+      ++m_factorisations;
+      if (!m_factored) {
+        m_weight.assign(n, 0.0);
+        return false;
+      }
+    }
+    m_weight.swap(m_next);
+  }
+  // Right-hand side b + S^T W p with b = K x (x = K^-1 b on entry), column-major n x 3.
+  Eigen::Map<Eigen::MatrixXd> rhs(static_cast<double*>(c.rhs->x), n, 3);
+  rhs.noalias() = m_k * x;
+  for (int k = 0; k < contacts.size(); ++k)
+    rhs.row(contacts.dofs[k]) += contacts.weights[k] * contacts.targets.row(k);
+  cholmod_dense* sol = cholmod_solve(CHOLMOD_A, c.factor, c.rhs, &c.common);
+  if (!sol) return false;
+  const Eigen::Map<const Eigen::MatrixXd> out(static_cast<const double*>(sol->x), n, 3);
+  const bool finite = out.allFinite();
+  if (finite) x = out;
+  cholmod_free_dense(&sol, &c.common);
+  return finite;
+}
+
+}  // namespace drape::pd
