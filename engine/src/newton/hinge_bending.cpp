@@ -30,6 +30,38 @@ using Grad12 = Eigen::Matrix<double, 12, 1>;
 using Ad = Eigen::AutoDiffScalar<Grad12>;
 using AdAd = Eigen::AutoDiffScalar<Eigen::Matrix<Ad, 12, 1>>;
 
+double valueOf(double s) { return s; }
+double valueOf(const AdAd& s) { return s.value().value(); }
+
+// Fade c of a wing whose normal has length `length` (rest length `rest`, m^2; see hinge_bending.h); rest 0: 1.
+template <typename S>
+S wingFade(const S& length, double rest) {
+  if (!(rest > 0.0) || valueOf(length) >= kHingeCollapseRatio * rest) return S(1.0);
+  S t = length / (kHingeCollapseRatio * rest);
+  return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+}
+
+// The fade and its derivative with respect to the normal length.
+double wingFade(double length, double rest, double& derivative) {
+  derivative = 0.0;
+  if (!(rest > 0.0) || length >= kHingeCollapseRatio * rest) return 1.0;
+  const double scale = kHingeCollapseRatio * rest, t = length / scale;
+  derivative = 30.0 * t * t * (1.0 - t) * (1.0 - t) / scale;
+  return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+}
+
+// Bending measure phi = theta c(|nA|) c(|nB|), generic in the scalar type (automatic differentiation).
+template <typename S>
+S measureOf(const Eigen::Matrix<S, 12, 1>& q, const std::array<double, 2>& rest) {
+  using V3 = Eigen::Matrix<S, 3, 1>;
+  V3 x0 = q.template segment<3>(0), x1 = q.template segment<3>(3);
+  V3 x2 = q.template segment<3>(6), x3 = q.template segment<3>(9);
+  V3 e = x1 - x0;
+  S fade = wingFade<S>(e.cross(x2 - x0).norm(), rest[0]) * wingFade<S>((x3 - x0).cross(e).norm(), rest[1]);
+  if (valueOf(fade) == 0.0) return S(0.0);
+  return angleOf<S>(q) * fade;
+}
+
 Grad12 gather(const Hinge& h, const Eigen::VectorXd& x) {
   Grad12 q;
   for (int k = 0; k < 4; ++k) q.segment<3>(3 * k) = x.segment<3>(3 * h.v[k]);
@@ -98,6 +130,7 @@ std::vector<Hinge> buildHinges(const ClothModel& model) {
         return f.bendWarp * dir.y() * dir.y() + f.bendWeft * dir.x() * dir.x();
       };
       h.stiffness = 0.5 * (kb(t0) + kb(t)) * 3.0 * len2 / (area(t0) + area(t));
+      h.restNormalLength = {2.0 * area(t0), 2.0 * area(t)};
       if (h.stiffness > 0.0) out.push_back(h);
       edges.erase(it);  // a third triangle on the same edge (non-manifold) starts a new pair
     }
@@ -137,6 +170,60 @@ Eigen::Matrix<double, 12, 12> hingeAngleHessian(const Hinge& hinge, const Eigen:
   return 0.5 * (h + h.transpose());
 }
 
+Grad12 hingeBendGradient(const Hinge& hinge, const Eigen::VectorXd& x, bool closedForm, double& phi) {
+  const Grad12 q = gather(hinge, x);
+  const Eigen::Vector3d x0 = q.segment<3>(0), e = q.segment<3>(3) - x0;
+  const Eigen::Vector3d d2 = q.segment<3>(6) - x0, d3 = q.segment<3>(9) - x0;
+  const Eigen::Vector3d na = e.cross(d2), nb = d3.cross(e);
+  const double la = na.norm(), lb = nb.norm();
+  double dcA = 0.0, dcB = 0.0;
+  const double cA = wingFade(la, hinge.restNormalLength[0], dcA), cB = wingFade(lb, hinge.restNormalLength[1], dcB);
+  const double fade = cA * cB;
+  if (fade == 0.0) {  // a zero-area wing: no bending (and grad theta undefined)
+    phi = 0.0;
+    return Grad12::Zero();
+  }
+  double theta = 0.0;
+  Grad12 g = fade * (closedForm ? closedFormGradient(q, theta) : autodiffGradient(q, theta));
+  phi = theta * fade;
+  // + theta grad(fade); d|nA|/dx1 = d2 x nA^, d|nA|/dx2 = nA^ x e; d|nB|/dx3 = e x nB^, d|nB|/dx1 = nB^ x d3;
+  // x0 takes minus the sum (translation invariance).
+  if (dcA != 0.0) {
+    const Eigen::Vector3d n = na / la, g1 = d2.cross(n), g2 = n.cross(e);
+    const double c = theta * cB * dcA;
+    g.segment<3>(0) -= c * (g1 + g2);
+    g.segment<3>(3) += c * g1;
+    g.segment<3>(6) += c * g2;
+  }
+  if (dcB != 0.0) {
+    const Eigen::Vector3d n = nb / lb, g1 = n.cross(d3), g3 = e.cross(n);
+    const double c = theta * cA * dcB;
+    g.segment<3>(0) -= c * (g1 + g3);
+    g.segment<3>(3) += c * g1;
+    g.segment<3>(9) += c * g3;
+  }
+  return g;
+}
+
+double hingeBendMeasure(const Hinge& hinge, const Eigen::VectorXd& x) {
+  return measureOf<double>(gather(hinge, x), hinge.restNormalLength);
+}
+
+Eigen::Matrix<double, 12, 12> hingeBendHessian(const Hinge& hinge, const Eigen::VectorXd& x) {
+  Grad12 q = gather(hinge, x);
+  Eigen::Matrix<AdAd, 12, 1> qa;
+  for (int i = 0; i < 12; ++i) {
+    Ad inner(q(i), 12, i);
+    qa(i) = AdAd(inner);
+    qa(i).derivatives() = Eigen::Matrix<Ad, 12, 1>::Zero();
+    qa(i).derivatives()(i) = Ad(1.0, Grad12::Zero());
+  }
+  AdAd phi = measureOf<AdAd>(qa, hinge.restNormalLength);
+  Eigen::Matrix<double, 12, 12> h;
+  for (int i = 0; i < 12; ++i) h.row(i) = phi.derivatives()(i).derivatives().transpose();
+  return 0.5 * (h + h.transpose());
+}
+
 HingeBending::HingeBending(const ClothModel& model) : m_hinges(buildHinges(model)) {
   std::vector<std::array<int, 4>> stencils;
   stencils.reserve(m_hinges.size());
@@ -152,8 +239,8 @@ void HingeBending::beginStep(const StepContext& ctx) {
 double HingeBending::value(const Eigen::VectorXd& x) const {
   double sum = 0.0;
   for (const auto& h : m_hinges) {
-    double theta = hingeAngle(h, x);
-    sum += 0.5 * h.stiffness * theta * theta;
+    double phi = hingeBendMeasure(h, x);
+    sum += 0.5 * h.stiffness * phi * phi;
   }
   return m_scale * sum;
 }
@@ -163,9 +250,9 @@ void HingeBending::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) con
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
     for (int i = 0; i < count; ++i) {
       const Hinge& h = m_hinges[ids[i]];
-      double theta = 0.0;
-      Grad12 grad = hingeAngleGradient(h, x, closedForm, theta);
-      m_stencils.addGradient(ids[i], (m_scale * h.stiffness * theta) * grad, g);
+      double phi = 0.0;
+      Grad12 grad = hingeBendGradient(h, x, closedForm, phi);
+      m_stencils.addGradient(ids[i], (m_scale * h.stiffness * phi) * grad, g);
     }
   });
 }
@@ -184,12 +271,12 @@ void HingeBending::assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockM
     Grad12 gd;
     for (int i = 0; i < count; ++i) {
       const Hinge& h = m_hinges[ids[i]];
-      double theta = 0.0;
-      Grad12 grad = hingeAngleGradient(h, x, closedForm, theta);
+      double phi = 0.0;
+      Grad12 grad = hingeBendGradient(h, x, closedForm, phi);
       Eigen::Matrix<double, 12, 12> he = grad * grad.transpose();
-      if (m_exactHessian) he += theta * hingeAngleHessian(h, x);
+      if (m_exactHessian) he += phi * hingeBendHessian(h, x);
       he *= m_scale * h.stiffness;
-      Grad12 ge = (m_scale * h.stiffness * theta) * grad;
+      Grad12 ge = (m_scale * h.stiffness * phi) * grad;
       if (fold) {
         he += fold->stencilDerivatives(ids[i], x, g ? &gd : nullptr);
         if (g) ge += gd;

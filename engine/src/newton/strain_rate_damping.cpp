@@ -107,8 +107,8 @@ void BendingDissipation::beginStep(const StepContext& ctx) {
   const double factor = m_beta * ctx.stiffnessScale / ctx.h;
   const bool closedForm = m_options.closedFormBending;
   forRange(static_cast<int>(m_hinges.size()), m_options.parallel, [&](int s) {
-    double theta = 0.0;
-    m_gradients[s] = hingeAngleGradient(m_hinges[s], *ctx.previousPositions, closedForm, theta);
+    double phi = 0.0;
+    m_gradients[s] = hingeBendGradient(m_hinges[s], *ctx.previousPositions, closedForm, phi);
     m_coefficients[s] = factor * m_hinges[s].stiffness;
   });
 }

@@ -1,9 +1,16 @@
 // Discrete hinge bending (newton-drape-pizana 3.2; Bridson et al. 2003, Grinspun et al. 2003 "discrete shells").
 // For each interior edge e = (x0, x1) with opposite vertices x2 (triangle x0 x1 x2) and x3 (triangle x1 x0 x3),
 // theta is the signed dihedral angle atan2((nA x nB) . e/|e|, nA . nB) with nA = (x1-x0)x(x2-x0),
-// nB = (x3-x0)x(x1-x0); rest angle 0 (flat). Energy E_e = 0.5 * k_e * theta^2 with
+// nB = (x3-x0)x(x1-x0); rest angle 0 (flat). Energy E_e = 0.5 * k_e * phi^2 with
 // k_e = kb * 3 |e_rest|^2 / (A_A + A_B) (discrete-shells scaling, rest lengths and areas), kb in N m from
 // the fabric: kb = bendWarp * d_y^2 + bendWeft * d_x^2 for the rest edge direction d (fold line along d).
+// phi = theta * c(J_A) * c(J_B) is the bending measure: J = |n| / |n_rest| is a wing's area ratio and
+// c(J) = s^3 (10 - 15 s + 6 s^2), s = J / kHingeCollapseRatio, for J < kHingeCollapseRatio, else 1 (C2).
+// phi = theta on every wing above that ratio; it fades out on a wing collapsing to zero area, where theta is
+// undefined (it jumps by pi as the wing passes through the edge line) and |grad theta| = 1 / (wing height)
+// grows without bound: with theta alone such a hinge made the Newton system arbitrarily stiff and no time step
+// converged (issue 5). With the fade, E is C2 with a bounded Hessian everywhere; a collapsed triangle carries no
+// bending (the membrane does not stop triangles collapsing: StVK resists compression less the more it grows).
 #pragma once
 
 #include <array>
@@ -18,7 +25,13 @@ namespace drape::newton {
 struct Hinge {
   std::array<int, 4> v{};  // x0, x1 (edge), x2, x3 (opposite vertices)
   double stiffness = 0.0;  // k_e, N m
+  // |nA|, |nB| at rest (twice the rest areas of the wings x0 x1 x2 and x1 x0 x3), m^2; 0: no fade on that wing.
+  std::array<double, 2> restNormalLength{};
 };
+
+// Area ratio below which a wing's bending fades out (see the top of this file). Well below the compression
+// of cloth in a drape, so the bending measure is the dihedral angle in every sound state.
+inline constexpr double kHingeCollapseRatio = 0.2;
 
 // Interior edges shared by exactly two triangles of the model, with their stiffness (0-stiffness ones dropped).
 std::vector<Hinge> buildHinges(const ClothModel& model);
@@ -34,6 +47,14 @@ Eigen::Matrix<double, 12, 1> hingeAngleGradient(const Hinge& hinge, const Eigen:
 // Exact Hessian of the angle (12 x 12), by forward-mode automatic differentiation of the gradient.
 Eigen::Matrix<double, 12, 12> hingeAngleHessian(const Hinge& hinge, const Eigen::VectorXd& x);
 
+// Bending measure phi (radians; theta faded on collapsing wings, see the top of this file) and its gradient;
+// closedForm as hingeAngleGradient. Finite for every x, 0 with a zero-area wing.
+Eigen::Matrix<double, 12, 1> hingeBendGradient(const Hinge& hinge, const Eigen::VectorXd& x, bool closedForm,
+                                               double& phi);
+double hingeBendMeasure(const Hinge& hinge, const Eigen::VectorXd& x);
+// Exact Hessian of phi (12 x 12), by automatic differentiation (exact-Hessian mode and tests).
+Eigen::Matrix<double, 12, 12> hingeBendHessian(const Hinge& hinge, const Eigen::VectorXd& x);
+
 class BendingDissipation;
 
 class HingeBending : public Energy {
@@ -43,7 +64,7 @@ class HingeBending : public Energy {
   void beginStep(const StepContext& ctx) override;
   double value(const Eigen::VectorXd& x) const override;
   void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
-  // Default: Gauss-Newton k_e grad(theta) grad(theta)^T (SPD); exact adds k_e theta Hess(theta).
+  // Default: Gauss-Newton k_e grad(phi) grad(phi)^T (SPD); exact adds k_e phi Hess(phi).
   void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const override;
   void addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const override;
   void addCouplings(std::vector<std::pair<int, int>>& pairs) const override;

@@ -57,8 +57,8 @@ class MembraneDissipation : public LaggedDissipation {
   std::vector<Eigen::Vector3d> m_weights;                // diagonal of W per triangle, N s/m (times 1/h)
 };
 
-// Bending dissipation on the dihedral angle rate of the hinges: per hinge E = 0.5 c (g . d)^2 with g the angle
-// gradient at x_n and c = beta k_e / h.
+// Bending dissipation on the dihedral angle rate of the hinges: per hinge E = 0.5 c (g . d)^2 with g the gradient
+// of the bending measure phi (the angle, faded on collapsing wings; hinge_bending.h) at x_n and c = beta k_e / h.
 class BendingDissipation : public LaggedDissipation {
  public:
   BendingDissipation(std::vector<Hinge> hinges, double beta);
@@ -84,7 +84,7 @@ class BendingDissipation : public LaggedDissipation {
   bool m_folded = false;
   double m_beta;
   StencilSet<4> m_stencils;
-  std::vector<Eigen::Matrix<double, 12, 1>> m_gradients;  // angle gradient per hinge, at x_n
+  std::vector<Eigen::Matrix<double, 12, 1>> m_gradients;  // bending-measure gradient per hinge, at x_n
   std::vector<double> m_coefficients;                     // c per hinge
 };
 
