@@ -36,6 +36,18 @@ void toFlat(const Eigen::MatrixX3d& m, Eigen::VectorXd& flat) {
   for (int v = 0; v < m.rows(); ++v) flat.segment<3>(3 * v) = m.row(v).transpose();
 }
 
+// Adds the iterations and times of `earlier` (attempts redone at a smaller step) to `report`.
+void addWork(const PreviewReport& earlier, PreviewReport& report) {
+  report.iterations += earlier.iterations;
+  report.sdIterations += earlier.sdIterations;
+  report.pcgIterations += earlier.pcgIterations;
+  report.contactChurn += earlier.contactChurn;
+  report.collisionTime += earlier.collisionTime;
+  report.contactSolveTime += earlier.contactSolveTime;
+  report.localTime += earlier.localTime;
+  report.globalTime += earlier.globalTime;
+}
+
 }  // namespace
 
 const char* toString(PreviewStatus status) {
@@ -217,30 +229,16 @@ PreviewReport PreviewSolver::Impl::step() {
   const Eigen::MatrixX3d x0 = x, v0 = v;
   const double time0 = time;
   PreviewReport total;
-  for (;;) {
-    const PreviewReport rep = attempt();
-    const int iterations = total.iterations + rep.iterations, sd = total.sdIterations + rep.sdIterations;
-    const int pcg = total.pcgIterations + rep.pcgIterations, churn = total.contactChurn + rep.contactChurn;
-    const double collisionTime = total.collisionTime + rep.collisionTime;
-    const double contactSolveTime = total.contactSolveTime + rep.contactSolveTime;
-    const double localTime = total.localTime + rep.localTime, globalTime = total.globalTime + rep.globalTime;
-    const int splits = total.splits;
-    total = rep;  // the last attempt's state; the work of every attempt
-    total.iterations = iterations;
-    total.sdIterations = sd;
-    total.pcgIterations = pcg;
-    total.contactChurn = churn;
-    total.collisionTime = collisionTime;
-    total.contactSolveTime = contactSolveTime;
-    total.localTime = localTime;
-    total.globalTime = globalTime;
-    total.splits = splits;
+  for (int splits = 0;; ++splits) {
+    PreviewReport rep = attempt();
+    addWork(total, rep);  // the last attempt's state, the work of every attempt
+    rep.splits = splits;
+    total = rep;
     if (rep.status != PreviewStatus::MaxIterations || level + 1 >= static_cast<int>(levels.size())) break;
     x = x0;
     v = v0;
     time = time0;
     useLevel(level + 1);
-    ++total.splits;
   }
   if (total.status == PreviewStatus::Converged) {
     if (++convergedInARow >= settings.growAfterSteps && level > 0) useLevel(level - 1);
