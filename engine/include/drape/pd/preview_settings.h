@@ -8,8 +8,8 @@ namespace drape::pd {
 enum class GlobalSolverKind { DomainDecomposed, Monolithic };  // pd-dd section 4 / baseline CHOLMOD on eq. 3
 enum class LocalStepKind { GaussSeidel, Jacobi };              // pd-dd section 5 / vanilla PD baseline
 // pd-dd section 6 (eq. 24 + PCG) / plain PCG / the dual solved by conjugate gradients preconditioned by the
-// contact DOFs' block of K, then PCG (contact_solve.h) / a Cholesky factor of K + Delta K, refactorised when the
-// contact set changes (contact_factor.h)
+// contact DOFs' block of K, then PCG (contact_solve.h) / a Cholesky factor of K + Delta K, updated or
+// refactorised when the contact set changes (contact_factor.h; the default)
 enum class ContactSolveKind { DualThenPcg, Pcg, DualCgThenPcg, Factor };
 // How avatar contact targets are found in the L-G iterations of a step (avatar_collision.h): from half-spaces
 // fixed per step (tangent planes at the step start's closest point, added to only where the real surface is

@@ -59,8 +59,9 @@ class PreviewSolver {
   // One time step of h = settings.timeStep / 2^k. An attempt whose L-G loop hits settings.maxIterations is redone
   // from the step's start at h / 2, down to settings.timeStep / 2^settings.maxHalvings (where a capped step is
   // kept); after settings.growAfterSteps converged steps h doubles back. The system of each h is factorised on
-  // first use and kept. Iterations and times in the report count every attempt. Never throws for numerical trouble: non-finite positions restore the
-  // state before the step and report Diverged; a cancel request restores it and reports Cancelled.
+  // first use and kept. Iterations and times in the report count every attempt. Never throws for numerical
+  // trouble: non-finite positions restore the state before the step and report Diverged; a cancel request restores
+  // it and reports Cancelled.
   PreviewReport step();
   // Thread-safe; checked between L-G iterations.
   void requestCancel();
