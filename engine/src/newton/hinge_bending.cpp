@@ -62,6 +62,23 @@ S measureOf(const Eigen::Matrix<S, 12, 1>& q, const std::array<double, 2>& rest)
   return angleOf<S>(q) * fade;
 }
 
+// Symmetrised Hessian of f (a scalar of the 12 hinge coordinates, generic in AdAd) at q, by nested forward-mode
+// automatic differentiation.
+template <typename F>
+Eigen::Matrix<double, 12, 12> autodiffHessian(const Grad12& q, F&& f) {
+  Eigen::Matrix<AdAd, 12, 1> qa;
+  for (int i = 0; i < 12; ++i) {
+    Ad inner(q(i), 12, i);
+    qa(i) = AdAd(inner);
+    qa(i).derivatives() = Eigen::Matrix<Ad, 12, 1>::Zero();
+    qa(i).derivatives()(i) = Ad(1.0, Grad12::Zero());
+  }
+  const AdAd value = f(qa);
+  Eigen::Matrix<double, 12, 12> h;
+  for (int i = 0; i < 12; ++i) h.row(i) = value.derivatives()(i).derivatives().transpose();
+  return 0.5 * (h + h.transpose());
+}
+
 Grad12 gather(const Hinge& h, const Eigen::VectorXd& x) {
   Grad12 q;
   for (int k = 0; k < 4; ++k) q.segment<3>(3 * k) = x.segment<3>(3 * h.v[k]);
@@ -156,18 +173,7 @@ Grad12 hingeAngleGradient(const Hinge& hinge, const Eigen::VectorXd& x, bool clo
 }
 
 Eigen::Matrix<double, 12, 12> hingeAngleHessian(const Hinge& hinge, const Eigen::VectorXd& x) {
-  Grad12 q = gather(hinge, x);
-  Eigen::Matrix<AdAd, 12, 1> qa;
-  for (int i = 0; i < 12; ++i) {
-    Ad inner(q(i), 12, i);
-    qa(i) = AdAd(inner);
-    qa(i).derivatives() = Eigen::Matrix<Ad, 12, 1>::Zero();
-    qa(i).derivatives()(i) = Ad(1.0, Grad12::Zero());
-  }
-  AdAd theta = angleOf<AdAd>(qa);
-  Eigen::Matrix<double, 12, 12> h;
-  for (int i = 0; i < 12; ++i) h.row(i) = theta.derivatives()(i).derivatives().transpose();
-  return 0.5 * (h + h.transpose());
+  return autodiffHessian(gather(hinge, x), [](const Eigen::Matrix<AdAd, 12, 1>& qa) { return angleOf<AdAd>(qa); });
 }
 
 Grad12 hingeBendGradient(const Hinge& hinge, const Eigen::VectorXd& x, bool closedForm, double& phi) {
@@ -210,18 +216,9 @@ double hingeBendMeasure(const Hinge& hinge, const Eigen::VectorXd& x) {
 }
 
 Eigen::Matrix<double, 12, 12> hingeBendHessian(const Hinge& hinge, const Eigen::VectorXd& x) {
-  Grad12 q = gather(hinge, x);
-  Eigen::Matrix<AdAd, 12, 1> qa;
-  for (int i = 0; i < 12; ++i) {
-    Ad inner(q(i), 12, i);
-    qa(i) = AdAd(inner);
-    qa(i).derivatives() = Eigen::Matrix<Ad, 12, 1>::Zero();
-    qa(i).derivatives()(i) = Ad(1.0, Grad12::Zero());
-  }
-  AdAd phi = measureOf<AdAd>(qa, hinge.restNormalLength);
-  Eigen::Matrix<double, 12, 12> h;
-  for (int i = 0; i < 12; ++i) h.row(i) = phi.derivatives()(i).derivatives().transpose();
-  return 0.5 * (h + h.transpose());
+  return autodiffHessian(gather(hinge, x), [&](const Eigen::Matrix<AdAd, 12, 1>& qa) {
+    return measureOf<AdAd>(qa, hinge.restNormalLength);
+  });
 }
 
 HingeBending::HingeBending(const ClothModel& model) : m_hinges(buildHinges(model)) {
