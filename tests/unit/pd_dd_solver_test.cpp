@@ -183,5 +183,45 @@ TEST(PdSystemTest, StrainProjectionIsRotationForRigidMotionAndClampsStretch) {
   EXPECT_TRUE(c.shear.allFinite());
 }
 
+// The polar rotation R of F = R S is defined by three properties: R^T R = I, S = R^T F symmetric and S positive
+// definite. With both stretch limits [1, 1] and the shear held by the stretch, the stretch projection is R itself.
+// Random F from round to thin (singular value ratio 5e-4) cover the closed-form square root of F^T F and, below
+// a ratio of about 1e-3, the eigen decomposition; nearly collapsed F (1e-5 and less) get an orthonormal frame of
+// the plane F spans.
+TEST(PdSystemTest, StrainProjectionIsThePolarRotation) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal;
+  int checked = 0;
+  for (double aspect : {1.0, 0.3, 1e-2, 1.5e-3, 1e-3, 5e-4, 1e-5, 1e-6, 1e-8})
+    for (int k = 0; k < 50; ++k) {
+      // F = Q[:, :2] Sigma U: singular values (scale, scale * aspect) in a random 3D frame and 2D rotation.
+      const Eigen::Matrix3d q =
+          Eigen::AngleAxisd(3.0 * normal(rng), Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized())
+              .toRotationMatrix();
+      const double angle = normal(rng), scale = std::exp(normal(rng));
+      Eigen::Matrix2d u;
+      u << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+      const Eigen::Matrix2d sigma = Eigen::Vector2d(scale, scale * aspect).asDiagonal();
+      const Eigen::Matrix<double, 3, 2> f = q.leftCols<2>() * sigma * u;
+      const StrainProjection p = projectStrain(f, {1.0, 1.0}, {1.0, 1.0}, 0.0, true);
+      const Eigen::Matrix<double, 3, 2>& r = p.stretch;
+      // Rounding in F^T F costs about eps / aspect^2 of the smaller singular value (in either method).
+      const double tol = 1e-12 + 1e-15 / (aspect * aspect);
+      EXPECT_LT((r.transpose() * r - Eigen::Matrix2d::Identity()).norm(), aspect >= 5e-4 ? tol : 1e-12) << "aspect " << aspect;
+      if (aspect >= 5e-4) {
+        const Eigen::Matrix2d s = r.transpose() * f;
+        EXPECT_LT(std::abs(s(0, 1) - s(1, 0)), tol * scale) << "aspect " << aspect;
+        EXPECT_GT(s.determinant(), 0.0) << "aspect " << aspect;
+        EXPECT_GT(s.trace(), 0.0) << "aspect " << aspect;
+        // The exact polar factor: F = (Q[:, :2] U) (U^T Sigma U).
+        EXPECT_LT((r - q.leftCols<2>() * u).norm(), tol) << "aspect " << aspect;
+      } else {
+        EXPECT_LT((r * r.transpose() * f - f).norm(), 1e-6 * f.norm()) << "aspect " << aspect;
+      }
+      ++checked;
+    }
+  EXPECT_EQ(checked, 450);
+}
+
 }  // namespace
 }  // namespace drape::pd

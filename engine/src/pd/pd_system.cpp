@@ -28,33 +28,59 @@ Eigen::Vector3d anyOrthogonal(const Eigen::Vector3d& u) {
   return u.cross(axis).normalized();
 }
 
-}  // namespace
+// Relative determinant of F^T F (det / trace^2 = l_min l_max / (l_min + l_max)^2) above which the closed-form
+// polar decomposition is used: below it, cancellation in det would cost more than 1e-10 relative accuracy.
+constexpr double kClosedFormPolarMinDet = 1e-6;
 
-StrainProjection projectStrain(const Eigen::Matrix<double, 3, 2>& f, const StretchLimits& warp,
-                               const StretchLimits& weft, double shearLimit, bool stretchHoldsShear) {
+// Polar rotation of a thin F (3 x 2) by an eigen decomposition of F^T F; on a (nearly) collapsed F, where
+// rounding in F^T F would leave that rotation's columns visibly non-orthonormal (singular values more than 1e4
+// apart), an orthonormal frame from its longer column, the other completed in its plane.
+Eigen::Matrix<double, 3, 2> polarFrameNearCollapse(const Eigen::Matrix<double, 3, 2>& f) {
   const Eigen::Matrix2d c = f.transpose() * f;
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
   eig.computeDirect(c);
   const Eigen::Vector2d lambda = eig.eigenvalues().cwiseMax(0.0);
   const Eigen::Matrix2d v = eig.eigenvectors();
-  Eigen::Matrix<double, 3, 2> r;
   const double scale = std::max(c.trace(), 1e-300);
-  if (lambda.minCoeff() > 1e-12 * scale) {
-    // Polar decomposition F = R S with S = sqrt(F^T F).
+  if (lambda.minCoeff() > 1e-8 * scale) {
     const Eigen::Vector2d inv = lambda.cwiseSqrt().cwiseInverse();
-    r = f * v * inv.asDiagonal() * v.transpose();
-  } else {
-    // Collapsed triangle: orthonormal frame from the longer column, the other completed in its plane.
-    const int longer = f.col(0).squaredNorm() >= f.col(1).squaredNorm() ? 0 : 1;
-    const int other = 1 - longer;
-    Eigen::Vector3d u = f.col(longer);
-    u = u.norm() > 1e-150 ? Eigen::Vector3d(u.normalized()) : Eigen::Vector3d::UnitX();
-    Eigen::Vector3d w = f.col(other) - u.dot(f.col(other)) * u;
-    w = w.norm() > 1e-12 * std::sqrt(scale) ? Eigen::Vector3d(w.normalized()) : anyOrthogonal(u);
-    r.col(longer) = u;
-    r.col(other) = w;
+    return f * v * inv.asDiagonal() * v.transpose();
   }
-  const Eigen::Matrix2d s = r.transpose() * f;
+  Eigen::Matrix<double, 3, 2> r;
+  const int longer = f.col(0).squaredNorm() >= f.col(1).squaredNorm() ? 0 : 1;
+  const int other = 1 - longer;
+  Eigen::Vector3d u = f.col(longer);
+  u = u.norm() > 1e-150 ? Eigen::Vector3d(u.normalized()) : Eigen::Vector3d::UnitX();
+  Eigen::Vector3d w = f.col(other) - u.dot(f.col(other)) * u;
+  w = w.norm() > 1e-12 * std::sqrt(scale) ? Eigen::Vector3d(w.normalized()) : anyOrthogonal(u);
+  w = (w - u.dot(w) * u).normalized();  // a second Gram-Schmidt pass: w came from a near-cancellation
+  r.col(longer) = u;
+  r.col(other) = w;
+  return r;
+}
+
+}  // namespace
+
+StrainProjection projectStrain(const Eigen::Matrix<double, 3, 2>& f, const StretchLimits& warp,
+                               const StretchLimits& weft, double shearLimit, bool stretchHoldsShear) {
+  // C = F^T F = [a b; b c]. Away from collapse its square root has a closed form (Cayley-Hamilton for 2 x 2):
+  // S = (C + sqrt(det C) I) / sqrt(tr C + 2 sqrt(det C)), and R = F S^-1. This runs for every triangle in every
+  // L-G iteration, at a fraction of the cost of an eigen decomposition.
+  const double a = f.col(0).squaredNorm(), b = f.col(0).dot(f.col(1)), c = f.col(1).squaredNorm();
+  const double det = a * c - b * b, trace = a + c;
+  Eigen::Matrix<double, 3, 2> r;
+  Eigen::Matrix2d s;
+  if (det > kClosedFormPolarMinDet * trace * trace) {
+    const double root = std::sqrt(det), t = std::sqrt(trace + 2.0 * root);
+    s << (a + root) / t, b / t, b / t, (c + root) / t;
+    Eigen::Matrix2d sInv;  // det S = root
+    sInv << (c + root), -b, -b, (a + root);
+    sInv *= 1.0 / (t * root);
+    r = f * sInv;
+  } else {
+    r = polarFrameNearCollapse(f);
+    s = r.transpose() * f;
+  }
   Eigen::Matrix2d stretch = s;
   stretch(0, 0) = std::clamp(s(0, 0), warp.min, warp.max);
   stretch(1, 1) = std::clamp(s(1, 1), weft.min, weft.max);
