@@ -182,7 +182,8 @@ TEST(NewtonSpeedup, FusedGradientAndHessianEqualSeparatePasses) {
 }
 
 // Folding the dissipations into the membrane's and the bending's passes assembles the same gradient and Hessian
-// as the four energies on their own.
+// as the four energies on their own, in the one-pass first iteration and in the separate gradient and Hessian
+// passes.
 TEST(NewtonSpeedup, FoldedDissipationsAssembleTheSameSum) {
   ClothModel m = gridCloth(30, 0.01, 0.3, 3);
   Eigen::VectorXd x0 = gridCloth(30, 0.01, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(x0.size());
@@ -193,7 +194,7 @@ TEST(NewtonSpeedup, FoldedDissipationsAssembleTheSameSum) {
   std::vector<Energy*> energies{&membrane, &bending, &stretch, &bend};
   std::vector<std::pair<int, int>> pairs;
   for (Energy* e : energies) e->addCouplings(pairs);
-  auto assemble = [&](bool fold, Eigen::VectorXd& g, Eigen::SparseMatrix<double>& hFirst,
+  auto assemble = [&](bool fold, Eigen::VectorXd& g, Eigen::VectorXd& gAlone, Eigen::SparseMatrix<double>& hFirst,
                       Eigen::SparseMatrix<double>& hLater) {
     membrane.foldDissipation(fold ? &stretch : nullptr);
     bending.foldDissipation(fold ? &bend : nullptr);
@@ -204,23 +205,32 @@ TEST(NewtonSpeedup, FoldedDissipationsAssembleTheSameSum) {
     g = Eigen::VectorXd::Zero(x0.size());
     for (Energy* e : energies) e->addGradientAndHessian(m.positions, g, first);
     for (Energy* e : energies) e->addHessian(m.positions, later);
+    gAlone = Eigen::VectorXd::Zero(x0.size());
+    for (Energy* e : energies) e->addGradient(m.positions, gAlone);
     hFirst = first.toSparse();
     hLater = later.toSparse();
   };
-  Eigen::VectorXd g0, g1;
+  Eigen::VectorXd g0, g1, gAlone0, gAlone1;
   Eigen::SparseMatrix<double> first0, later0, first1, later1;
-  assemble(false, g0, first0, later0);
-  assemble(true, g1, first1, later1);
+  assemble(false, g0, gAlone0, first0, later0);
+  assemble(true, g1, gAlone1, first1, later1);
   ASSERT_GT(g0.norm(), 0.0);
   EXPECT_LT((g1 - g0).norm(), 1e-12 * g0.norm());
+  EXPECT_LT((gAlone0 - g0).norm(), 1e-12 * g0.norm());
+  EXPECT_LT((gAlone1 - g0).norm(), 1e-12 * g0.norm());
   EXPECT_LT((first1 - first0).norm(), 1e-12 * first0.norm());
   EXPECT_LT((later1 - later0).norm(), 1e-12 * later0.norm());
   EXPECT_LT((later0 - first0).norm(), 1e-12 * first0.norm());
-  // Folded, the dissipations alone add nothing to the matrix (their share comes through the partners).
+  // Folded, the dissipations alone add nothing to the matrix or the gradient (their share comes through the
+  // partners).
   BlockMatrix alone(m.numVertices(), pairs);
   stretch.addHessian(m.positions, alone);
   bend.addHessian(m.positions, alone);
   EXPECT_EQ(alone.toSparse().norm(), 0.0);
+  Eigen::VectorXd gDissipation = Eigen::VectorXd::Zero(x0.size());
+  stretch.addGradient(m.positions, gDissipation);
+  bend.addGradient(m.positions, gDissipation);
+  EXPECT_EQ(gDissipation.norm(), 0.0);
 }
 
 TEST(NewtonSpeedup, FastAssemblyEqualsSerialSearchAssembly) {

@@ -244,12 +244,15 @@ double HingeBending::value(const Eigen::VectorXd& x) const {
 
 void HingeBending::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
   const bool closedForm = m_options.closedFormBending;
+  const BendingDissipation* fold = m_options.foldDissipation ? m_dissipation : nullptr;
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
     for (int i = 0; i < count; ++i) {
       const Hinge& h = m_hinges[ids[i]];
       double phi = 0.0;
-      Grad12 grad = hingeBendGradient(h, x, closedForm, phi);
-      m_stencils.addGradient(ids[i], (m_scale * h.stiffness * phi) * grad, g);
+      const Grad12 grad = hingeBendGradient(h, x, closedForm, phi);
+      Grad12 ge = (m_scale * h.stiffness * phi) * grad;
+      if (fold) ge += fold->stencilGradient(ids[i], x);
+      m_stencils.addGradient(ids[i], ge, g);
     }
   });
 }

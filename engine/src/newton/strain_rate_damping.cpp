@@ -56,13 +56,15 @@ double MembraneDissipation::value(const Eigen::VectorXd& x) const {
   return sum;
 }
 
+Eigen::Matrix<double, 9, 1> MembraneDissipation::stencilGradient(int s, const Eigen::VectorXd& x) const {
+  const Eigen::Vector3d rate = m_jacobians[s] * gatherDelta<3>(m_stencils[s], x, *m_previous);
+  return m_jacobians[s].transpose() * m_weights[s].cwiseProduct(rate);
+}
+
 void MembraneDissipation::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
+  if (folded()) return;  // the membrane adds this energy's share in its own pass
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
-    for (int i = 0; i < count; ++i) {
-      const int s = ids[i];
-      Eigen::Vector3d rate = m_jacobians[s] * gatherDelta<3>(m_stencils[s], x, *m_previous);
-      m_stencils.addGradient(s, m_jacobians[s].transpose() * m_weights[s].cwiseProduct(rate), g);
-    }
+    for (int i = 0; i < count; ++i) m_stencils.addGradient(ids[i], stencilGradient(ids[i], x), g);
   });
 }
 
@@ -122,19 +124,20 @@ double BendingDissipation::value(const Eigen::VectorXd& x) const {
   return sum;
 }
 
+Eigen::Matrix<double, 12, 1> BendingDissipation::stencilGradient(int s, const Eigen::VectorXd& x) const {
+  return (m_coefficients[s] * m_gradients[s].dot(gatherDelta<4>(m_stencils[s], x, *m_previous))) * m_gradients[s];
+}
+
 void BendingDissipation::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
+  if (folded()) return;  // the hinge bending adds this energy's share in its own pass
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
-    for (int i = 0; i < count; ++i) {
-      const int s = ids[i];
-      double rate = m_gradients[s].dot(gatherDelta<4>(m_stencils[s], x, *m_previous));
-      m_stencils.addGradient(s, (m_coefficients[s] * rate) * m_gradients[s], g);
-    }
+    for (int i = 0; i < count; ++i) m_stencils.addGradient(ids[i], stencilGradient(ids[i], x), g);
   });
 }
 
 Eigen::Matrix<double, 12, 12> BendingDissipation::stencilDerivatives(int s, const Eigen::VectorXd& x,
                                                                      Eigen::Matrix<double, 12, 1>* ge) const {
-  if (ge) *ge = (m_coefficients[s] * m_gradients[s].dot(gatherDelta<4>(m_stencils[s], x, *m_previous))) * m_gradients[s];
+  if (ge) *ge = stencilGradient(s, x);
   return m_coefficients[s] * (m_gradients[s] * m_gradients[s].transpose());
 }
 

@@ -89,12 +89,18 @@ double StvkMembrane::value(const Eigen::VectorXd& x) const {
 }
 
 void StvkMembrane::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
+  const MembraneDissipation* fold = m_options.foldDissipation ? m_dissipation : nullptr;
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
+    Eigen::Matrix<double, 9, 1> ge;
     for (int i = 0; i < count; ++i) {
       const MembraneElement& e = m_elements[ids[i]];
-      Eigen::Vector3d s = greenStrain(deformationGradient(e, x));
-      Eigen::Matrix<double, 9, 1> ge = (m_scale * e.area) * greenStrainJacobian(e, x).transpose() *
-                                       s.cwiseProduct(voigtWeights(e));
+      const Eigen::Matrix<double, 3, 2> f = deformationGradient(e, x);
+      // J^T sigma without forming J (strainJacobianOf): vertex k gets c_k0 s0 f0 + c_k1 s1 f1 + s2/2 (c_k0 f1 + c_k1 f0).
+      const Eigen::Vector3d sigma = (m_scale * e.area) * greenStrain(f).cwiseProduct(voigtWeights(e));
+      const Eigen::Vector3d a = sigma(0) * f.col(0) + 0.5 * sigma(2) * f.col(1);
+      const Eigen::Vector3d b = sigma(1) * f.col(1) + 0.5 * sigma(2) * f.col(0);
+      for (int k = 0; k < 3; ++k) ge.segment<3>(3 * k) = e.c[k](0) * a + e.c[k](1) * b;
+      if (fold) ge += fold->stencilGradient(ids[i], x);
       m_stencils.addGradient(ids[i], ge, g);
     }
   });

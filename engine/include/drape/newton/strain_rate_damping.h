@@ -40,8 +40,10 @@ class MembraneDissipation : public LaggedDissipation {
   // Element Hessian of triangle s for this step (constant within it) and, when ge is given, the element gradient
   // at x (beginStep first).
   Eigen::Matrix<double, 9, 9> stencilDerivatives(int s, const Eigen::VectorXd& x, Eigen::Matrix<double, 9, 1>* ge) const;
-  // Set by the solver when the membrane on the same triangles folds this energy into its Hessian passes
-  // (AssemblyOptions::foldDissipation): addHessian and addGradientAndHessian then add nothing.
+  // Element gradient of triangle s at x (beginStep first).
+  Eigen::Matrix<double, 9, 1> stencilGradient(int s, const Eigen::VectorXd& x) const;
+  // Set by the solver when the membrane on the same triangles folds this energy into its passes
+  // (AssemblyOptions::foldDissipation): addGradient, addHessian and addGradientAndHessian then add nothing.
   void setFolded(bool folded) { m_folded = folded; }
 
  private:
@@ -73,6 +75,8 @@ class BendingDissipation : public LaggedDissipation {
   // Element Hessian of hinge s for this step and, when ge is given, the element gradient at x (beginStep first).
   Eigen::Matrix<double, 12, 12> stencilDerivatives(int s, const Eigen::VectorXd& x,
                                                    Eigen::Matrix<double, 12, 1>* ge) const;
+  // Element gradient of hinge s at x (beginStep first).
+  Eigen::Matrix<double, 12, 1> stencilGradient(int s, const Eigen::VectorXd& x) const;
   // As MembraneDissipation::setFolded, for the hinge bending on the same hinges.
   void setFolded(bool folded) { m_folded = folded; }
 
