@@ -3,13 +3,16 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <random>
+#include <tbb/task_arena.h>
 
 #include "drape/pd/dd_solver.h"
 #include "drape/pd/domain_partition.h"
 #include "drape/pd/grid_cloth.h"
 #include "drape/pd/pd_system.h"
 #include "drape/pd/sparse_cholesky.h"
+#include "drape/pd/subtree_groups.h"
 
 namespace drape::pd {
 namespace {
@@ -146,6 +149,102 @@ TEST(PdSparseCholesky, SolvesLikeDenseCholeskyAndRejectsIndefinite) {
   SparseCholesky badChol;
   EXPECT_FALSE(badChol.factor(bad));
   EXPECT_FALSE(badChol.ok());
+}
+
+// Groups of subtrees: on a balanced tree the root goes on top and each half forms a group; on a chain nothing
+// splits; on random trees every node's parent is in its own group or on top, and top nodes have top parents.
+TEST(PdSubtreeGroups, SplitsBalancedTreesAndKeepsDependenciesInsideGroups) {
+  //      6
+  //    2   5
+  //   0 1 3 4
+  const SubtreeGroups balanced = groupSubtrees({2, 2, 6, 5, 5, 6, -1}, std::vector<long>(7, 1), 2);
+  ASSERT_EQ(balanced.groups.size(), 2u);
+  EXPECT_EQ(balanced.top, std::vector<int>{6});
+  EXPECT_EQ(balanced.cost, 4);
+  std::vector<std::vector<int>> halves = balanced.groups;
+  std::sort(halves.begin(), halves.end());
+  EXPECT_EQ(halves[0], (std::vector<int>{0, 1, 2}));
+  EXPECT_EQ(halves[1], (std::vector<int>{3, 4, 5}));
+  const SubtreeGroups chain = groupSubtrees({1, 2, 3, -1}, std::vector<long>(4, 1), 2);
+  EXPECT_TRUE(chain.groups.empty());
+  EXPECT_EQ(chain.cost, 4);
+
+  std::mt19937 rng(3);
+  int split = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    const int n = 200;
+    std::vector<int> parent(n);
+    std::vector<long> cost(n);
+    for (int j = 0; j < n; ++j) {
+      parent[j] = j + 1 < n ? j + 1 + static_cast<int>(rng() % std::min(8, n - j - 1)) : -1;
+      cost[j] = 1 + static_cast<long>(rng() % 50);
+    }
+    const SubtreeGroups g = groupSubtrees(parent, cost, 3);
+    std::vector<int> groupOf(n, -2);
+    for (int v : g.top) groupOf[v] = -1;
+    for (size_t k = 0; k < g.groups.size(); ++k)
+      for (int v : g.groups[k]) groupOf[v] = static_cast<int>(k);
+    long total = 0, largest = 0, topCost = 0;
+    for (long c : cost) total += c;
+    for (int v : g.top) topCost += cost[v];
+    for (const auto& grp : g.groups) {
+      long sum = 0;
+      for (int v : grp) sum += cost[v];
+      largest = std::max(largest, sum);
+    }
+    for (int j = 0; j < n; ++j) {
+      ASSERT_NE(groupOf[j], -2) << "node " << j << " in no group";
+      if (parent[j] < 0) continue;
+      if (groupOf[j] == -1) EXPECT_EQ(groupOf[parent[j]], -1) << "top node " << j << " below a group";
+      else EXPECT_TRUE(groupOf[parent[j]] == groupOf[j] || groupOf[parent[j]] == -1) << "node " << j;
+    }
+    if (!g.groups.empty()) {
+      ++split;
+      EXPECT_EQ(g.cost, topCost + largest);
+      EXPECT_LT(g.cost, total);
+    }
+  }
+  EXPECT_GT(split, 10);
+}
+
+// The subtree-parallel solve (groups of independent subtrees on several threads, then the separators above them)
+// against Eigen's dense Cholesky, on the system matrix of a cloth (a 2D mesh, so the elimination tree splits), in
+// an arena of 4 threads and one of 1 (no groups: the sequential solve).
+TEST(PdSparseCholesky, SubtreeParallelSolveEqualsDenseCholesky) {
+  GridClothOptions o;
+  o.nx = 30;
+  o.ny = 30;
+  PdSystem sys(makeGridCloth(o), PreviewSettings{});
+  const Eigen::SparseMatrix<double>& k = sys.matrix();
+  const int n = static_cast<int>(k.rows());
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  Eigen::MatrixXd b(n, 3);
+  for (int i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) b(i, c) = uni(rng);
+  const Eigen::MatrixXd expected = Eigen::MatrixXd(k).llt().solve(b);
+  for (int threads : {4, 1}) {
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+      SparseCholesky chol;
+      ASSERT_TRUE(chol.factor(k, CholeskySolve::SubtreeParallel));
+      if (threads > 1)
+        EXPECT_GE(chol.subtreeGroups(), 2);
+      else
+        EXPECT_EQ(chol.subtreeGroups(), 0);
+      std::vector<double> x(3 * n), work(3 * n);
+      for (int rep = 0; rep < 3; ++rep) {  // repeated solves: no state left behind
+        for (int i = 0; i < n; ++i)
+          for (int c = 0; c < 3; ++c) x[3 * i + c] = b(i, c);
+        chol.solveInPlace(x.data(), work.data());
+        double err = 0.0;
+        for (int i = 0; i < n; ++i)
+          for (int c = 0; c < 3; ++c) err = std::max(err, std::abs(x[3 * i + c] - expected(i, c)));
+        EXPECT_LT(err, 1e-10 * expected.cwiseAbs().maxCoeff()) << threads << " threads";
+      }
+      EXPECT_LT((chol.solve(b) - expected).norm(), 1e-10 * expected.norm());
+    });
+  }
 }
 
 TEST(PdSystemTest, HingeVectorVanishesOnAffineFields) {

@@ -163,7 +163,8 @@ DomainDecomposedSolver::DomainDecomposedSolver(const std::vector<DomainMatrix>& 
   if (im.nDual > 0) {
     SpMat gRR(im.nDual, im.nDual);
     gRR.setFromTriplets(gRRTrip.begin(), gRRTrip.end());
-    if (!im.gRR.factor(gRR)) {
+    // Solved alone between the domains' parallel steps: the subtrees of its elimination tree run side by side.
+    if (!im.gRR.factor(gRR, CholeskySolve::SubtreeParallel)) {
       m_ok = false;
       return;
     }

@@ -2,10 +2,36 @@
 
 #include <algorithm>
 #include <cholmod.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "drape/pd/subtree_groups.h"
 
 namespace drape::pd {
+bool SparseCholesky::factor(const Eigen::SparseMatrix<double>& input, CholeskySolve mode) {
+  m_groupRows.clear();
+  m_topRows.clear();
+  m_rowStart.clear();
+  m_column.clear();
+  m_rowValue.clear();
+  if (mode == CholeskySolve::Sequential) return factorWith(input, -1);
+  // Minimum degree gives less fill, nested dissection a more even tree: keep the ordering whose solve is shorter
+  // (sequential top plus the largest group of subtrees; the factor is computed twice, once per ordering).
+  if (!factorWith(input, CHOLMOD_AMD)) return false;
+  SubtreeGroups plan = planSubtrees();
+  SparseCholesky nested;
+  if (nested.factorWith(input, CHOLMOD_METIS)) {
+    SubtreeGroups other = nested.planSubtrees();
+    if (other.cost < plan.cost) {
+      *this = std::move(nested);
+      plan = std::move(other);
+    }
+  }
+  if (!plan.groups.empty()) useSubtrees(std::move(plan));
+  return m_ok;
+}
 
-bool SparseCholesky::factor(const Eigen::SparseMatrix<double>& input) {
+bool SparseCholesky::factorWith(const Eigen::SparseMatrix<double>& input, int ordering) {
   m_ok = false;
   m_n = static_cast<int>(input.rows());
   if (m_n == 0) {
@@ -33,6 +59,10 @@ bool SparseCholesky::factor(const Eigen::SparseMatrix<double>& input) {
   common.supernodal = CHOLMOD_SIMPLICIAL;
   common.final_ll = 1;  // L L^T rather than L D L^T
   common.print = 0;
+  if (ordering >= 0) {
+    common.nmethods = 1;
+    common.method[0].ordering = ordering;
+  }
   cholmod_factor* l = cholmod_analyze(&view, &common);
   bool good = l != nullptr;
   if (good) good = cholmod_factorize(&view, l, &common) != 0 && l->minor == l->n && l->is_ll && !l->is_super;
@@ -55,11 +85,93 @@ bool SparseCholesky::factor(const Eigen::SparseMatrix<double>& input) {
       good = good && nz[j] > 0 && i[p[j]] == j && x[p[j]] > 0.0;
       if (good) m_invDiagonal[j] = 1.0 / x[p[j]];
     }
+    m_nonZeros = static_cast<long>(m_value.size());
   }
   if (l) cholmod_free_factor(&l, &common);
   cholmod_finish(&common);
   m_ok = good;
   return m_ok;
+}
+
+SubtreeGroups SparseCholesky::planSubtrees() const {
+  const int n = m_n;
+  // Elimination tree: the parent of column j is its first row below the diagonal; a column's work is its length.
+  std::vector<int> parent(n, -1);
+  std::vector<long> cost(n);
+  for (int j = 0; j < n; ++j) {
+    for (int q = m_colStart[j] + 1; q < m_colStart[j + 1]; ++q)
+      if (parent[j] < 0 || m_row[q] < parent[j]) parent[j] = m_row[q];
+    cost[j] = m_colStart[j + 1] - m_colStart[j];
+  }
+  return groupSubtrees(parent, cost, std::min(8, tbb::this_task_arena::max_concurrency()));
+}
+
+void SparseCholesky::useSubtrees(SubtreeGroups plan) {
+  const int n = m_n;
+  m_groupRows = std::move(plan.groups);
+  m_topRows = std::move(plan.top);
+  // L by rows (strictly lower part): entry (i, j) of column j goes to row i.
+  m_rowStart.assign(n + 1, 0);
+  for (int j = 0; j < n; ++j)
+    for (int q = m_colStart[j] + 1; q < m_colStart[j + 1]; ++q) ++m_rowStart[m_row[q] + 1];
+  for (int i = 0; i < n; ++i) m_rowStart[i + 1] += m_rowStart[i];
+  m_column.resize(m_rowStart[n]);
+  m_rowValue.resize(m_rowStart[n]);
+  std::vector<int> fill(m_rowStart.begin(), m_rowStart.end() - 1);
+  for (int j = 0; j < n; ++j)
+    for (int q = m_colStart[j] + 1; q < m_colStart[j + 1]; ++q) {
+      const int k = fill[m_row[q]]++;
+      m_column[k] = j;
+      m_rowValue[k] = m_value[q];
+    }
+  m_colStart.clear();
+  m_row.clear();
+  m_value.clear();
+}
+
+void SparseCholesky::solveSubtreeParallel(double* w) const {
+  const int* column = m_column.data();
+  const double* value = m_rowValue.data();
+  // Forward, row i: y_i = (w_i - sum_j L_ij y_j) / L_ii; its columns j are descendants of i (same group or below).
+  auto forwardRow = [&](int i) {
+    double a = w[3 * i], b = w[3 * i + 1], c = w[3 * i + 2];
+    for (int q = m_rowStart[i]; q < m_rowStart[i + 1]; ++q) {
+      const double* wj = w + 3 * column[q];
+      const double v = value[q];
+      a -= v * wj[0];
+      b -= v * wj[1];
+      c -= v * wj[2];
+    }
+    const double d = m_invDiagonal[i];
+    w[3 * i] = a * d;
+    w[3 * i + 1] = b * d;
+    w[3 * i + 2] = c * d;
+  };
+  // Backward, row i (descending): x_i = w_i / L_ii once every ancestor has subtracted its share; then x_i's share
+  // goes to the descendants j of row i.
+  auto backwardRow = [&](int i) {
+    const double d = m_invDiagonal[i];
+    const double a = w[3 * i] * d, b = w[3 * i + 1] * d, c = w[3 * i + 2] * d;
+    w[3 * i] = a;
+    w[3 * i + 1] = b;
+    w[3 * i + 2] = c;
+    for (int q = m_rowStart[i]; q < m_rowStart[i + 1]; ++q) {
+      double* wj = w + 3 * column[q];
+      const double v = value[q];
+      wj[0] -= v * a;
+      wj[1] -= v * b;
+      wj[2] -= v * c;
+    }
+  };
+  const int groups = static_cast<int>(m_groupRows.size());
+  tbb::parallel_for(0, groups, [&](int g) {
+    for (int i : m_groupRows[g]) forwardRow(i);
+  });
+  for (int i : m_topRows) forwardRow(i);
+  for (auto it = m_topRows.rbegin(); it != m_topRows.rend(); ++it) backwardRow(*it);
+  tbb::parallel_for(0, groups, [&](int g) {
+    for (auto it = m_groupRows[g].rbegin(); it != m_groupRows[g].rend(); ++it) backwardRow(*it);
+  });
 }
 
 void SparseCholesky::solveInPlace(double* x, double* w) const {
@@ -70,6 +182,20 @@ void SparseCholesky::solveInPlace(double* x, double* w) const {
     w[3 * k + 1] = src[1];
     w[3 * k + 2] = src[2];
   }
+  if (m_groupRows.empty())
+    solveSequential(w);
+  else
+    solveSubtreeParallel(w);
+  for (int k = 0; k < n; ++k) {
+    double* dst = x + 3 * m_perm[k];
+    dst[0] = w[3 * k];
+    dst[1] = w[3 * k + 1];
+    dst[2] = w[3 * k + 2];
+  }
+}
+
+void SparseCholesky::solveSequential(double* w) const {
+  const int n = m_n;
   const int* row = m_row.data();
   const double* val = m_value.data();
   // Forward: L y = P b, column by column.
@@ -102,12 +228,6 @@ void SparseCholesky::solveInPlace(double* x, double* w) const {
     w[3 * j] = a * d;
     w[3 * j + 1] = b * d;
     w[3 * j + 2] = c * d;
-  }
-  for (int k = 0; k < n; ++k) {
-    double* dst = x + 3 * m_perm[k];
-    dst[0] = w[3 * k];
-    dst[1] = w[3 * k + 1];
-    dst[2] = w[3 * k + 2];
   }
 }
 

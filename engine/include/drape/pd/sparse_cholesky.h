@@ -8,17 +8,27 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
+#include "drape/pd/subtree_groups.h"
+
 namespace drape::pd {
+
+// Sequential: CHOLMOD's fill-reducing ordering, one thread per solve (the domains' own factors, solved side by side).
+// SubtreeParallel: each solve runs the independent subtrees of the elimination tree on the threads of the calling
+// arena, in groups of about equal work, and the separators above them on one thread (the coarse dual system G_RR
+// of the domain-decomposed solve, which is solved alone). Of minimum degree (AMD) and nested dissection (METIS),
+// the ordering with the shorter such solve is kept.
+enum class CholeskySolve { Sequential, SubtreeParallel };
 
 class SparseCholesky {
  public:
   SparseCholesky() = default;
   // a: symmetric positive definite n x n (both triangles stored or only the lower one; the lower one is read).
   // Returns false (and ok() stays false) when a is not numerically positive definite.
-  bool factor(const Eigen::SparseMatrix<double>& a);
+  bool factor(const Eigen::SparseMatrix<double>& a, CholeskySolve mode = CholeskySolve::Sequential);
   bool ok() const { return m_ok; }
   int size() const { return m_n; }
-  long nonZeros() const { return static_cast<long>(m_value.size()); }  // non-zeros of L
+  long nonZeros() const { return m_nonZeros; }  // non-zeros of L
+  int subtreeGroups() const { return static_cast<int>(m_groupRows.size()); }  // 0: sequential solves
 
   // In place: x (n x 3, row-major: x[3 i + c]) <- A^-1 x. work: 3 n doubles of scratch, overwritten.
   void solveInPlace(double* x, double* work) const;
@@ -26,13 +36,27 @@ class SparseCholesky {
   Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const;
 
  private:
+  bool factorWith(const Eigen::SparseMatrix<double>& a, int cholmodOrdering);  // < 0: CHOLMOD's choice
+  SubtreeGroups planSubtrees() const;  // of the column factor, for the threads of the calling arena
+  void useSubtrees(SubtreeGroups plan);
+  void solveSequential(double* w) const;       // w: permuted right-hand side in, solution out
+  void solveSubtreeParallel(double* w) const;  // the same, by groups of subtrees
+
   int m_n = 0;
+  long m_nonZeros = 0;
   bool m_ok = false;
   std::vector<int> m_perm;       // row k of P A P^T is row m_perm[k] of A
-  std::vector<int> m_colStart;   // n + 1; the diagonal entry opens every column
+  std::vector<double> m_invDiagonal;
+  // Sequential: L by columns; the diagonal entry opens every column.
+  std::vector<int> m_colStart;   // n + 1
   std::vector<int> m_row;
   std::vector<double> m_value;
-  std::vector<double> m_invDiagonal;
+  // SubtreeParallel: L by rows without the diagonal; the rows of each group of subtrees and of the separators
+  // above them (the "top"), ascending.
+  std::vector<int> m_rowStart, m_column;
+  std::vector<double> m_rowValue;
+  std::vector<std::vector<int>> m_groupRows;
+  std::vector<int> m_topRows;
 };
 
 }  // namespace drape::pd
