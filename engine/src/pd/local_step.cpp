@@ -115,9 +115,6 @@ void LocalStep::jacobi(const Eigen::MatrixX3d& x, std::vector<StrainTarget>& tar
 void LocalStep::gaussSeidel(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& b, int iteration,
                             std::vector<StrainTarget>& targets) const {
   const auto& strains = m_system.strains();
-  const StretchLimits warp = m_system.warpLimits(), weft = m_system.weftLimits();
-  const double shear = m_system.shearLimit();
-  const bool stretchHoldsShear = m_system.stretchHoldsShear();
   tbb::parallel_for(0, static_cast<int>(m_domains.size()), [&](int j) {
     const Domain& dom = m_domains[j];
     const int nl = static_cast<int>(dom.vertices.size());
@@ -139,8 +136,7 @@ void LocalStep::gaussSeidel(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& b
       const auto& lv = dom.local[i];
       Eigen::Matrix3d xs;
       for (int c = 0; c < 3; ++c) xs.row(c) = xl.row(lv[c]);
-      const StrainTarget f = xs.transpose() * sc.g;
-      const StrainTarget target = combinedTarget(sc, projectStrain(f, warp, weft, shear, stretchHoldsShear));
+      const StrainTarget target = m_system.target(t, xs.transpose() * sc.g);
       const StrainTarget delta = target - targets[t];
       targets[t] = target;
       for (int c = 0; c < 3; ++c) {

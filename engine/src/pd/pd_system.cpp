@@ -61,15 +61,15 @@ Eigen::Matrix<double, 3, 2> polarFrameNearCollapse(const Eigen::Matrix<double, 3
 
 }  // namespace
 
-StrainProjection projectStrain(const Eigen::Matrix<double, 3, 2>& f, const StretchLimits& warp,
-                               const StretchLimits& weft, double shearLimit, bool stretchHoldsShear) {
-  // C = F^T F = [a b; b c]. Away from collapse its square root has a closed form (Cayley-Hamilton for 2 x 2):
-  // S = (C + sqrt(det C) I) / sqrt(tr C + 2 sqrt(det C)), and R = F S^-1. This runs for every triangle in every
-  // L-G iteration, at a fraction of the cost of an eigen decomposition.
+namespace {
+
+// Polar decomposition F = R S (R 3 x 2 with orthonormal columns, S symmetric 2 x 2). C = F^T F = [a b; b c]. Away
+// from collapse its square root has a closed form (Cayley-Hamilton for 2 x 2): S = (C + sqrt(det C) I) /
+// sqrt(tr C + 2 sqrt(det C)), and R = F S^-1. This runs for every triangle in every L-G iteration, at a fraction
+// of the cost of an eigen decomposition.
+void polarDecomposition(const Eigen::Matrix<double, 3, 2>& f, Eigen::Matrix<double, 3, 2>& r, Eigen::Matrix2d& s) {
   const double a = f.col(0).squaredNorm(), b = f.col(0).dot(f.col(1)), c = f.col(1).squaredNorm();
   const double det = a * c - b * b, trace = a + c;
-  Eigen::Matrix<double, 3, 2> r;
-  Eigen::Matrix2d s;
   if (det > kClosedFormPolarMinDet * trace * trace) {
     const double root = std::sqrt(det), t = std::sqrt(trace + 2.0 * root);
     s << (a + root) / t, b / t, b / t, (c + root) / t;
@@ -81,13 +81,29 @@ StrainProjection projectStrain(const Eigen::Matrix<double, 3, 2>& f, const Stret
     r = polarFrameNearCollapse(f);
     s = r.transpose() * f;
   }
+}
+
+// S with its diagonal clamped into the stretch limits (and, when the stretch holds the shear, its off-diagonal
+// into +-shearLimit).
+Eigen::Matrix2d clampedStretch(const Eigen::Matrix2d& s, const StretchLimits& warp, const StretchLimits& weft,
+                               double shearLimit, bool stretchHoldsShear) {
   Eigen::Matrix2d stretch = s;
   stretch(0, 0) = std::clamp(s(0, 0), warp.min, warp.max);
   stretch(1, 1) = std::clamp(s(1, 1), weft.min, weft.max);
+  if (stretchHoldsShear) stretch(0, 1) = stretch(1, 0) = std::clamp(0.5 * (s(0, 1) + s(1, 0)), -shearLimit, shearLimit);
+  return stretch;
+}
+
+}  // namespace
+
+StrainProjection projectStrain(const Eigen::Matrix<double, 3, 2>& f, const StretchLimits& warp,
+                               const StretchLimits& weft, double shearLimit, bool stretchHoldsShear) {
+  Eigen::Matrix<double, 3, 2> r;
+  Eigen::Matrix2d s;
+  polarDecomposition(f, r, s);
   Eigen::Matrix2d shear = s;
   shear(0, 1) = shear(1, 0) = std::clamp(0.5 * (s(0, 1) + s(1, 0)), -shearLimit, shearLimit);
-  if (stretchHoldsShear) stretch(0, 1) = stretch(1, 0) = shear(0, 1);
-  return {r * stretch, r * shear};
+  return {r * clampedStretch(s, warp, weft, shearLimit, stretchHoldsShear), r * shear};
 }
 
 Eigen::Matrix<double, 3, 2> combinedTarget(const StrainConstraint& sc, const StrainProjection& p) {
@@ -293,9 +309,15 @@ PdSystem::PdSystem(const newton::ClothModel& model, const PreviewSettings& setti
     for (int k = 0; k < 3; ++k) ++m_incOffsets[model.triangles(t, k) + 1];
   for (int v = 0; v < nv; ++v) m_incOffsets[v + 1] += m_incOffsets[v];
   m_incTriangles.assign(m_incOffsets[nv], 0);
+  m_incWeights.assign(m_incOffsets[nv], Eigen::Vector2d::Zero());
   std::vector<int> fill(m_incOffsets.begin(), m_incOffsets.end() - 1);
   for (int t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k) m_incTriangles[fill[model.triangles(t, k)]++] = t;
+    for (int k = 0; k < 3; ++k) {
+      const int slot = fill[model.triangles(t, k)]++;
+      const StrainConstraint& sc = m_strains[t];
+      m_incTriangles[slot] = t;
+      m_incWeights[slot] = Eigen::Vector2d(sc.columnWeight(0) * sc.g(k, 0), sc.columnWeight(1) * sc.g(k, 1));
+    }
 }
 
 Eigen::Matrix<double, 3, 2> PdSystem::deformationGradient(int i, const Eigen::MatrixX3d& x) const {
@@ -306,8 +328,19 @@ Eigen::Matrix<double, 3, 2> PdSystem::deformationGradient(int i, const Eigen::Ma
 }
 
 Eigen::Matrix<double, 3, 2> PdSystem::project(int i, const Eigen::MatrixX3d& x) const {
-  return combinedTarget(m_strains[i],
-                        projectStrain(deformationGradient(i, x), m_warp, m_weft, m_shearLimit, m_stretchHoldsShear));
+  return target(i, deformationGradient(i, x));
+}
+
+Eigen::Matrix<double, 3, 2> PdSystem::target(int i, const Eigen::Matrix<double, 3, 2>& f) const {
+  const StrainConstraint& sc = m_strains[i];
+  if (sc.weightShear != 0.0)
+    return combinedTarget(sc, projectStrain(f, m_warp, m_weft, m_shearLimit, m_stretchHoldsShear));
+  // No shear constraint (the stretch holds the shear, or a degenerate rest triangle): the target is the stretch
+  // projection alone (combinedTarget's weighted mean of one term).
+  Eigen::Matrix<double, 3, 2> r;
+  Eigen::Matrix2d s;
+  polarDecomposition(f, r, s);
+  return r * clampedStretch(s, m_warp, m_weft, m_shearLimit, m_stretchHoldsShear);
 }
 
 double PdSystem::strainEnergy(const Eigen::MatrixX3d& x) const {
@@ -328,11 +361,8 @@ Eigen::MatrixX3d PdSystem::rhs(const Eigen::MatrixX3d& z,
       const int v = m_freeVertices[d];
       Eigen::Vector3d acc = m_mass[v] * invH2 * z.row(v).transpose();
       for (int k = m_incOffsets[v]; k < m_incOffsets[v + 1]; ++k) {
-        const int t = m_incTriangles[k];
-        const StrainConstraint& sc = m_strains[t];
-        const int local = sc.vertices[0] == v ? 0 : (sc.vertices[1] == v ? 1 : 2);
-        acc += sc.columnWeight(0) * sc.g(local, 0) * targets[t].col(0) +
-               sc.columnWeight(1) * sc.g(local, 1) * targets[t].col(1);
+        const Eigen::Matrix<double, 3, 2>& target = targets[m_incTriangles[k]];
+        acc += m_incWeights[k].x() * target.col(0) + m_incWeights[k].y() * target.col(1);
       }
       b.row(d) = acc.transpose();
     }

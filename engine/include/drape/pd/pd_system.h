@@ -107,6 +107,8 @@ class PdSystem {
   Eigen::Matrix<double, 3, 2> deformationGradient(int i, const Eigen::MatrixX3d& x) const;
   // Combined strain target of triangle i at positions x (|V| x 3).
   Eigen::Matrix<double, 3, 2> project(int i, const Eigen::MatrixX3d& x) const;
+  // The same from triangle i's deformation gradient f (3 x 2).
+  Eigen::Matrix<double, 3, 2> target(int i, const Eigen::Matrix<double, 3, 2>& f) const;
   // Strain energy (stretch + shear constraints) of all triangles at positions x (|V| x 3), J.
   double strainEnergy(const Eigen::MatrixX3d& x) const;
   // Right-hand side of eq. 3 over the free DOFs (|free| x 3): M z / h^2 + sum_i w_i A_i^T B_i y_i - K_fp x_p.
@@ -131,6 +133,8 @@ class PdSystem {
   bool m_stretchHoldsShear = false;
   Eigen::SparseMatrix<double> m_k, m_kfp;
   std::vector<int> m_incOffsets, m_incTriangles;
+  // Per incidence (vertex v, triangle t): w_c g(v, c) for both columns c of t's target, t's share of A^T B y at v.
+  std::vector<Eigen::Vector2d> m_incWeights;
 };
 
 }  // namespace drape::pd
