@@ -105,7 +105,7 @@ const std::vector<SettingSpec>& Settings::specs() {
        "steps the elastic part of the Hessian may be reused by a step's first Newton iteration (0: always fresh)", 0,
        1000},
       {"solver.newton.fold_dissipation", T::Boolean, "true", "",
-       "membrane and bending add their dissipations' element Hessians before one scatter per stencil"},
+       "membrane and bending add their dissipations' element gradients and Hessians before one scatter per stencil"},
       {"solver.damping.air", T::Number, "5", "1/s", "air drag alpha", 0, 1e3},
       {"solver.damping.stretch", T::Number, "1e-2", "s", "stretch dissipation beta_s", 0, 10},
       {"solver.damping.bend", T::Number, "1e-1", "s", "bending dissipation beta_b", 0, 10},
