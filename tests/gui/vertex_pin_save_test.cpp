@@ -5,10 +5,12 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QSignalSpy>
+#include <QTreeWidget>
 #include <fstream>
 
 #include "drape/core/input_error.h"
 #include "drape/garment/garment_builder.h"
+#include "drape/qt/scene_panel.h"
 #include "gui_test_support.h"
 
 namespace drape::test {
@@ -87,6 +89,16 @@ TEST_F(VertexPinSaveTest, SavedPinsCarryPositionsAndLoadBackOntoTheSameVertices)
   qt::SceneDocument staleDocument;
   ASSERT_TRUE(staleDocument.open(staleFile));
   EXPECT_EQ(staleDocument.vertexPins(), pinned) << "the document shows the vertices actually pinned";
+  // The scene panel lists the vertices held, not the file's stale indices.
+  const std::vector<std::vector<int>> held = staleDocument.heldVerticesPerPin();
+  ASSERT_EQ(held.size(), 1u);
+  EXPECT_EQ(held[0], pinned);  // each entry at its saved position
+  qt::ScenePanel panel;
+  panel.showScene(staleDocument.scene(), {}, held);
+  const QTreeWidgetItem* pinsItem = panel.tree()->topLevelItem(2);
+  ASSERT_EQ(pinsItem->childCount(), 1);
+  EXPECT_EQ(pinsItem->child(0)->text(1),
+            QString("2 vertex(es): %1, %2 (at saved positions)").arg(pinned[0]).arg(pinned[1]));
 }
 
 TEST_F(VertexPinSaveTest, CornerPinsFollowAMeshChangeAndInteriorPinsAreRefused) {

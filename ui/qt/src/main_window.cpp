@@ -328,7 +328,7 @@ void MainWindow::updateTitle() {
 void MainWindow::refreshPanels() {
   if (!m_document->hasScene()) return;
   const Scene& scene = m_document->scene();
-  m_scenePanel->showScene(scene, m_document->state().panelPresets);
+  m_scenePanel->showScene(scene, m_document->state().panelPresets, m_document->heldVerticesPerPin());
   m_fabricPanel->showFabric(scene.fabric, scene.settings.text("fabric.preset"));
   m_simulationPanel->showSettings(scene.settings);
   updateActions();

@@ -112,12 +112,13 @@ bool SceneDocument::keepsMesh(const SceneState& state) const {
   return meshOverrides(state) == meshOverrides(m_state);
 }
 
-std::vector<int> SceneDocument::vertexPins() const {
-  std::vector<int> vertices;
-  if (!m_scene) return vertices;
+std::vector<std::vector<int>> SceneDocument::heldVerticesPerPin() const {
+  std::vector<std::vector<int>> out;
+  if (!m_scene) return out;
   for (const PinSpec& pin : m_scene->pins) {
+    std::vector<int>& held = out.emplace_back();
     if (pin.vertices.empty()) continue;
-    std::vector<int> held = pin.vertices;
+    held = pin.vertices;
     if (m_garment) {
       try {
         held = pinVertices(pin, *m_scene, *m_garment);  // saved positions ("at") may correct the indices
@@ -125,8 +126,13 @@ std::vector<int> SceneDocument::vertexPins() const {
         // Unresolvable saved positions: building the scene reports that error; show the file's indices meanwhile.
       }
     }
-    vertices.insert(vertices.end(), held.begin(), held.end());
   }
+  return out;
+}
+
+std::vector<int> SceneDocument::vertexPins() const {
+  std::vector<int> vertices;
+  for (const std::vector<int>& held : heldVerticesPerPin()) vertices.insert(vertices.end(), held.begin(), held.end());
   std::sort(vertices.begin(), vertices.end());
   vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
   return vertices;

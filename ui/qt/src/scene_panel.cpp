@@ -12,7 +12,8 @@
 namespace drape::qt {
 namespace {
 
-QString describePin(const PinSpec& pin) {
+// held: the vertices a vertex pin holds on the current garment (empty: unknown, the file's indices are shown).
+QString describePin(const PinSpec& pin, const std::vector<int>& held) {
   if (pin.byRegion) {
     return QObject::tr("region [%1, %2, %3] - [%4, %5, %6] m")
         .arg(pin.region.min.x(), 0, 'g', 3)
@@ -23,10 +24,13 @@ QString describePin(const PinSpec& pin) {
         .arg(pin.region.max.z(), 0, 'g', 3);
   }
   if (!pin.vertices.empty()) {
+    const std::vector<int>& shown = held.size() == pin.vertices.size() ? held : pin.vertices;
     QStringList indices;
-    for (size_t i = 0; i < pin.vertices.size() && i < 12; ++i) indices << QString::number(pin.vertices[i]);
-    if (pin.vertices.size() > 12) indices << QStringLiteral("...");
-    return QObject::tr("%n vertex(es): %1", nullptr, static_cast<int>(pin.vertices.size())).arg(indices.join(", "));
+    for (size_t i = 0; i < shown.size() && i < 12; ++i) indices << QString::number(shown[i]);
+    if (shown.size() > 12) indices << QStringLiteral("...");
+    const QString text =
+        QObject::tr("%n vertex(es): %1", nullptr, static_cast<int>(shown.size())).arg(indices.join(", "));
+    return pin.at.empty() ? text : QObject::tr("%1 (at saved positions)").arg(text);
   }
   const QString edge = pin.edgeLabel.empty() ? QString::number(pin.edge) : QString::fromStdString(pin.edgeLabel);
   return QObject::tr("panel %1, edge %2").arg(QString::fromStdString(pin.panel), edge);
@@ -67,7 +71,8 @@ ScenePanel::ScenePanel(QWidget* parent) : QWidget(parent) {
           [this](const QString& units) { emit avatarUnitsChosen(units.toStdString()); });
 }
 
-void ScenePanel::showScene(const Scene& scene, const std::map<std::string, std::string>& panelPresets) {
+void ScenePanel::showScene(const Scene& scene, const std::map<std::string, std::string>& panelPresets,
+                           const std::vector<std::vector<int>>& heldVertices) {
   m_tree->clear();
   m_choosers.clear();
   auto* panels = new QTreeWidgetItem(m_tree, {tr("Panels (%1)").arg(scene.pattern.panels.size())});
@@ -105,7 +110,9 @@ void ScenePanel::showScene(const Scene& scene, const std::map<std::string, std::
 
   auto* pins = new QTreeWidgetItem(m_tree, {tr("Pins (%1)").arg(scene.pins.size())});
   for (size_t i = 0; i < scene.pins.size(); ++i)
-    new QTreeWidgetItem(pins, {tr("pin %1").arg(i), describePin(scene.pins[i])});
+    new QTreeWidgetItem(pins, {tr("pin %1").arg(i), describePin(scene.pins[i], i < heldVertices.size()
+                                                                                    ? heldVertices[i]
+                                                                                    : std::vector<int>{})});
   pins->setExpanded(true);
 
   m_avatar->setText(scene.avatarFile.empty()

@@ -71,6 +71,9 @@ class SceneDocument : public QObject {
   bool togglePin(int vertex);
   // Vertices the scene's vertex pins hold (sorted, unique), as resolved on the current garment.
   std::vector<int> vertexPins() const;
+  // Per entry of scene().pins: the vertices a vertex pin holds on the current garment, in its order (its saved
+  // positions may have corrected the file's indices); empty for edge and region pins.
+  std::vector<std::vector<int>> heldVerticesPerPin() const;
 
   // Where the running simulation is (the controller's latestResumeState). When set, the simulation of an edit
   // that keeps the garment mesh (same files and mesh settings) continues from it: a preview from its current

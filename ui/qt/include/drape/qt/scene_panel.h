@@ -4,6 +4,7 @@
 #include <QWidget>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "drape/scene/scene.h"
 
@@ -19,8 +20,11 @@ class ScenePanel : public QWidget {
  public:
   explicit ScenePanel(QWidget* parent = nullptr);
 
-  // panelPresets: the user's per-panel choices (SceneState::panelPresets), shown over the file's.
-  void showScene(const Scene& scene, const std::map<std::string, std::string>& panelPresets);
+  // panelPresets: the user's per-panel choices (SceneState::panelPresets), shown over the file's. heldVertices:
+  // per pin, the vertices it holds on the current garment (SceneDocument::heldVerticesPerPin), shown for vertex
+  // pins instead of the file's indices, which saved positions may have corrected; empty: the file's indices.
+  void showScene(const Scene& scene, const std::map<std::string, std::string>& panelPresets,
+                 const std::vector<std::vector<int>>& heldVertices = {});
 
   QTreeWidget* tree() const { return m_tree; }
   // The fabric chooser of a panel (first item: the default fabric), null for an unknown panel.
