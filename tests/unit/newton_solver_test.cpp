@@ -237,6 +237,25 @@ TEST(NewtonSolver, DivergenceKeepsLastGoodStateAndCancelStops) {
   EXPECT_EQ(solver.positions(), before);
 }
 
+// A step whose residual never gets below tau_n (here an unreachable 1e-30 with one Newton iteration) splits down
+// to h_min and ends Diverged with the last good state kept, so that a caller stops instead of retrying it forever.
+TEST(NewtonSolver, StepThatNeverConvergesEndsDivergedAtMinimumStep) {
+  ClothModel m = hangingCloth(5, 0.2);
+  NewtonSettings s;
+  s.relaxation = false;
+  s.hMin = 1e-5;
+  s.tauNewton = 1e-30;
+  s.maxNewtonIterations = 1;
+  NewtonSolver solver(m, s);
+  const Eigen::VectorXd x = solver.positions(), v = solver.velocities();
+  const NewtonStepReport r = solver.step();
+  EXPECT_EQ(r.status, NewtonStatus::Diverged);
+  EXPECT_GT(r.splits, 10);  // 1 ms down to 1e-5 s at omega 0.75
+  EXPECT_EQ(solver.positions(), x);
+  EXPECT_EQ(solver.velocities(), v);
+  EXPECT_EQ(solver.time(), 0.0);
+}
+
 TEST(NewtonSolver, PreconditionersAndDirectSolveAgree) {
   ClothModel m = hangingCloth(8, 0.3);
   Eigen::VectorXd reference;

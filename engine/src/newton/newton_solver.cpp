@@ -280,7 +280,9 @@ NewtonStepReport NewtonSolver::step() {
     m_goodSteps = 0;
     ++report.splits;
     if (m_h * s.omega < s.hMin) {
-      report.status = st == NewtonStatus::MaxIterations ? NewtonStatus::MaxIterations : NewtonStatus::Diverged;
+      // Not even the smallest step converges (diverging, or the residual stalls above tau_n): Diverged, with the
+      // last good state kept. Reporting MaxIterations here let callers retry the same failing step forever.
+      report.status = NewtonStatus::Diverged;
       report.h = m_h;
       m_h = hCap;
       report.kineticPercentile = kineticEnergyPercentile();
