@@ -9,10 +9,17 @@
 #include "drape/garment/garment_builder.h"
 #include "drape/scene/pins.h"
 #include "drape/scene/scene.h"
+#include "drape/sim/simulation.h"
 #include "shared_data.h"
 
 namespace drape::test {
 namespace {
+
+MeshingOptions edgeLength(double target) {
+  MeshingOptions o;
+  o.targetEdgeLength = target;
+  return o;
+}
 
 Scene load(const std::filesystem::path& file, std::vector<std::pair<std::string, std::string>> overrides = {}) {
   SceneRequest request;
@@ -55,7 +62,7 @@ TEST(SceneLoader, BarePatternBecomesAScene) {
 
 TEST(SceneLoader, PinsResolveToTheTopCorners) {
   const Scene scene = load(assetsDir() / "scenes" / "hanging_cloth.json");
-  const Garment garment = buildGarment(scene.pattern, {scene.settings.number("mesh.target_edge_length")});
+  const Garment garment = buildGarment(scene.pattern, meshingOptions(scene));
   const auto pinned = resolvePins(scene, garment);
   ASSERT_EQ(pinned.size(), 2u);
   for (int v : pinned) {
@@ -73,7 +80,7 @@ TEST(SceneLoader, EdgePinSelectsTheWholeEdge) {
         << R"(", "pins": [{"panel": "cloth", "edge_label": "top"}], "mesh": {"target_edge_length": 0.1}})";
   }
   const Scene scene = loadScene(request);
-  const Garment garment = buildGarment(scene.pattern, {0.1});
+  const Garment garment = buildGarment(scene.pattern, edgeLength(0.1));
   const auto pinned = resolvePins(scene, garment);
   EXPECT_EQ(pinned.size(), 11u);  // 1 m edge at 0.1 m: 10 segments, 11 vertices
   for (int v : pinned) EXPECT_NEAR(garment.positions(v, 1), 1.5, 1e-9);
@@ -99,7 +106,7 @@ TEST(SceneLoader, VertexPinsAndPinMotionLoad) {
   const PinMotion& m = scene.pins[1].motion;
   EXPECT_NEAR(m.angle, M_PI / 2, 1e-12);
   EXPECT_NEAR(m.axis.z(), 1.0, 1e-12);  // normalised
-  const Garment garment = buildGarment(scene.pattern, {0.1});
+  const Garment garment = buildGarment(scene.pattern, edgeLength(0.1));
   const auto pinned = resolvePins(scene, garment);
   std::vector<int> expected = garment.edgeVertices.at(0).at(scene.pins[1].edge);
   expected.insert(expected.end(), {1, 3});
@@ -147,7 +154,7 @@ TEST_P(BadSceneTest, RaisesInputErrorNamingFileAndElement) {
   try {
     const Scene scene = load(file);
     // Pins that select nothing surface when they are resolved against the garment.
-    const Garment garment = buildGarment(scene.pattern, {scene.settings.number("mesh.target_edge_length")});
+    const Garment garment = buildGarment(scene.pattern, meshingOptions(scene));
     resolvePins(scene, garment);
     FAIL() << bad.file << ": no error raised";
   } catch (const InputError& e) {
@@ -236,7 +243,7 @@ TEST(SceneLoader, DefaultSceneIsTheTshirtOnTheDefaultMannequin) {
   const BoundingBox body = boundsOf(scene.avatar.vertices);
   EXPECT_NEAR(body.min.y(), 0.0, 0.01);  // feet on the floor
   EXPECT_GT(body.size().y(), 1.5);
-  const Garment garment = buildGarment(scene.pattern, {scene.settings.number("mesh.target_edge_length")});
+  const Garment garment = buildGarment(scene.pattern, meshingOptions(scene));
   EXPECT_FALSE(garment.stitchPairs.empty());
 }
 

@@ -318,8 +318,10 @@ double stackedDrop(bool self, int steps, int* selfContacts, int* intersections, 
     *selfContacts = std::max(*selfContacts, r.selfContacts);
     const double separation = smallestSeparation(model, rowsOf(solver.positions()), 225);
     *intersections = std::max(*intersections, layerIntersections(model, rowsOf(solver.positions()), 2 * 14 * 14));
-    if (self) EXPECT_GT(separation, 0.0) << "step " << i;  // with cloth contact: never crossed, at any step
-    if (self) EXPECT_EQ(r.selfCrossed, 0) << "step " << i;
+    if (self) {  // with cloth contact: never crossed, at any step
+      EXPECT_GT(separation, 0.0) << "step " << i;
+      EXPECT_EQ(r.selfCrossed, 0) << "step " << i;
+    }
     if (i >= 10) smallest = std::min(smallest, separation);  // after the landing (steps 7-9)
   }
   if (collisionMs) *collisionMs = 1e3 * collision / steps;
@@ -503,7 +505,9 @@ TEST(PdCollision, CcdGuardRollsBackVerticesThatTunnelThroughTheOtherLayer) {
   for (int v : s.ring) kept += x.row(v) == s.x.row(v);
   EXPECT_GT(kept, static_cast<int>(s.ring.size()) / 2);
   for (int v = 0; v < nv; ++v)
-    if (std::hypot(s.start(v, 0), s.start(v, 2)) > 0.06 + 2 * 0.5 / 14.0) EXPECT_EQ(x.row(v), s.x.row(v)) << v;
+    if (std::hypot(s.start(v, 0), s.start(v, 2)) > 0.06 + 2 * 0.5 / 14.0) {
+      EXPECT_EQ(x.row(v), s.x.row(v)) << v;
+    }
   // A second pass finds nothing to do.
   Eigen::MatrixX3d again = x;
   const ClothGuardStats st2 = guard.enforce(s.start, again, [](int) { return true; });

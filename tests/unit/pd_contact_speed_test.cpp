@@ -102,7 +102,9 @@ TEST(PdContactSpeed, WarmStartFromTheLastForcesGivesTheSameSolution) {
       EXPECT_LT(hot.warmRelativeResidual, 0.2);
       // Never more than the warm start's own solve worse; the SD phase (one update) gains at a loose tolerance.
       EXPECT_LE(solvesOf(hot), solvesOf(cold) + 1);
-      if (tolerance > 1e-3 && kind == ContactSolveKind::DualThenPcg) EXPECT_LT(solvesOf(hot), solvesOf(cold));
+      if (tolerance > 1e-3 && kind == ContactSolveKind::DualThenPcg) {
+        EXPECT_LT(solvesOf(hot), solvesOf(cold));
+      }
       const double scale = reference.norm();
       EXPECT_LT((xWarm - reference).norm(), (tolerance > 1e-3 ? 1e-2 : 1e-4) * scale);
       EXPECT_LT((xCold - reference).norm(), (tolerance > 1e-3 ? 1e-2 : 1e-4) * scale);
