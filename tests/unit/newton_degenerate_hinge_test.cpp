@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "drape/newton/hinge_bending.h"
+#include "energy_fd_check.h"
 #include "newton_test_cloths.h"
 
 using namespace drape::newton;
@@ -62,7 +63,6 @@ TEST(NewtonDegenerateHinge, FadedBendingMatchesFiniteDifferences) {
   e.setExactHessian(true);
   e.beginStep(StepContext{});
   const Eigen::VectorXd x = m.positions;
-  const int n = static_cast<int>(x.size());
   double phi = 0.0, phiAd = 0.0;
   const Eigen::Matrix<double, 12, 1> cf = hingeBendGradient(hinge, x, true, phi);
   const Eigen::Matrix<double, 12, 1> ad = hingeBendGradient(hinge, x, false, phiAd);
@@ -70,30 +70,7 @@ TEST(NewtonDegenerateHinge, FadedBendingMatchesFiniteDifferences) {
   EXPECT_GT(std::abs(phi), 0.01);
   EXPECT_LT(std::abs(phi), 0.9 * std::abs(hingeAngle(hinge, x)));  // faded
   EXPECT_LT((cf - ad).norm(), 1e-9 * ad.norm());
-  auto gradient = [&](const Eigen::VectorXd& y) {
-    Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
-    e.addGradient(y, g);
-    return g;
-  };
-  const double step = 1e-7;
-  Eigen::VectorXd gfd(n);
-  Eigen::MatrixXd hfd(n, n);
-  for (int k = 0; k < n; ++k) {
-    Eigen::VectorXd xp = x, xm = x;
-    xp(k) += step;
-    xm(k) -= step;
-    gfd(k) = (e.value(xp) - e.value(xm)) / (2 * step);
-    hfd.col(k) = (gradient(xp) - gradient(xm)) / (2 * step);
-  }
-  const Eigen::VectorXd g = gradient(x);
-  EXPECT_LT((g - gfd).norm() / gfd.norm(), 1e-5);
-  BlockMatrix h;
-  std::vector<std::pair<int, int>> pairs;
-  e.addCouplings(pairs);
-  h.build(n / 3, pairs);
-  e.addHessian(x, h);
-  const Eigen::MatrixXd hd = Eigen::MatrixXd(h.toSparse());
-  EXPECT_LT((hd - hfd).norm() / hfd.norm(), 1e-4);
+  checkEnergy(e, x, true, 1e-7);
 }
 
 }  // namespace
