@@ -59,10 +59,6 @@ Eigen::Matrix<double, 3, 2> polarFrameNearCollapse(const Eigen::Matrix<double, 3
   return r;
 }
 
-}  // namespace
-
-namespace {
-
 // Polar decomposition F = R S (R 3 x 2 with orthonormal columns, S symmetric 2 x 2). C = F^T F = [a b; b c]. Away
 // from collapse its square root has a closed form (Cayley-Hamilton for 2 x 2): S = (C + sqrt(det C) I) /
 // sqrt(tr C + 2 sqrt(det C)), and R = F S^-1. This runs for every triangle in every L-G iteration, at a fraction
@@ -71,11 +67,11 @@ void polarDecomposition(const Eigen::Matrix<double, 3, 2>& f, Eigen::Matrix<doub
   const double a = f.col(0).squaredNorm(), b = f.col(0).dot(f.col(1)), c = f.col(1).squaredNorm();
   const double det = a * c - b * b, trace = a + c;
   if (det > kClosedFormPolarMinDet * trace * trace) {
-    const double root = std::sqrt(det), t = std::sqrt(trace + 2.0 * root);
-    s << (a + root) / t, b / t, b / t, (c + root) / t;
-    Eigen::Matrix2d sInv;  // det S = root
+    const double root = std::sqrt(det), invT = 1.0 / std::sqrt(trace + 2.0 * root);
+    s << (a + root) * invT, b * invT, b * invT, (c + root) * invT;
+    Eigen::Matrix2d sInv;  // adj(S) / det S, det S = root
     sInv << (c + root), -b, -b, (a + root);
-    sInv *= 1.0 / (t * root);
+    sInv *= invT / root;
     r = f * sInv;
   } else {
     r = polarFrameNearCollapse(f);
@@ -90,7 +86,8 @@ Eigen::Matrix2d clampedStretch(const Eigen::Matrix2d& s, const StretchLimits& wa
   Eigen::Matrix2d stretch = s;
   stretch(0, 0) = std::clamp(s(0, 0), warp.min, warp.max);
   stretch(1, 1) = std::clamp(s(1, 1), weft.min, weft.max);
-  if (stretchHoldsShear) stretch(0, 1) = stretch(1, 0) = std::clamp(0.5 * (s(0, 1) + s(1, 0)), -shearLimit, shearLimit);
+  if (stretchHoldsShear)
+    stretch(0, 1) = stretch(1, 0) = std::clamp(0.5 * (s(0, 1) + s(1, 0)), -shearLimit, shearLimit);
   return stretch;
 }
 

@@ -8,6 +8,7 @@
 #include "drape/pd/subtree_groups.h"
 
 namespace drape::pd {
+
 bool SparseCholesky::factor(const Eigen::SparseMatrix<double>& input, CholeskySolve mode) {
   m_groupRows.clear();
   m_topRows.clear();
@@ -33,6 +34,7 @@ bool SparseCholesky::factor(const Eigen::SparseMatrix<double>& input, CholeskySo
 
 bool SparseCholesky::factorWith(const Eigen::SparseMatrix<double>& input, int ordering) {
   m_ok = false;
+  m_nonZeros = 0;
   m_n = static_cast<int>(input.rows());
   if (m_n == 0) {
     m_colStart.assign(1, 0);
