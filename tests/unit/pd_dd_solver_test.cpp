@@ -108,6 +108,19 @@ TEST(PdDdSolver, EqualsMonolithicForManyDomainCounts) {
   }
 }
 
+// Largest entry error of the in-place solve of the first three columns of b against expected.
+double inPlaceSolveError(const SparseCholesky& chol, const Eigen::MatrixXd& b, const Eigen::MatrixXd& expected) {
+  const int n = static_cast<int>(b.rows());
+  std::vector<double> x(3 * n), work(3 * n);
+  for (int i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) x[3 * i + c] = b(i, c);
+  chol.solveInPlace(x.data(), work.data());
+  double err = 0.0;
+  for (int i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) err = std::max(err, std::abs(x[3 * i + c] - expected(i, c)));
+  return err;
+}
+
 // The simplicial factor with our own three-column solves against Eigen's dense Cholesky of the same matrix.
 TEST(PdSparseCholesky, SolvesLikeDenseCholeskyAndRejectsIndefinite) {
   std::mt19937 rng(11);
@@ -134,15 +147,7 @@ TEST(PdSparseCholesky, SolvesLikeDenseCholeskyAndRejectsIndefinite) {
     for (int c = 0; c < 5; ++c) b(i, c) = uni(rng);
   const Eigen::MatrixXd expected = Eigen::MatrixXd(a).llt().solve(b);
   EXPECT_LT((chol.solve(b) - expected).norm(), 1e-12 * expected.norm());
-  // In-place three-column solve.
-  std::vector<double> x(3 * n), work(3 * n);
-  for (int i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) x[3 * i + c] = b(i, c);
-  chol.solveInPlace(x.data(), work.data());
-  double err = 0.0;
-  for (int i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) err = std::max(err, std::abs(x[3 * i + c] - expected(i, c)));
-  EXPECT_LT(err, 1e-12);
+  EXPECT_LT(inPlaceSolveError(chol, b, expected), 1e-12);  // the in-place three-column solve
   // Indefinite: a negative diagonal entry.
   Eigen::SparseMatrix<double> bad = a;
   bad.coeffRef(n / 2, n / 2) = -4.0;
@@ -232,16 +237,8 @@ TEST(PdSparseCholesky, SubtreeParallelSolveEqualsDenseCholesky) {
         EXPECT_GE(chol.subtreeGroups(), 2);
       else
         EXPECT_EQ(chol.subtreeGroups(), 0);
-      std::vector<double> x(3 * n), work(3 * n);
-      for (int rep = 0; rep < 3; ++rep) {  // repeated solves: no state left behind
-        for (int i = 0; i < n; ++i)
-          for (int c = 0; c < 3; ++c) x[3 * i + c] = b(i, c);
-        chol.solveInPlace(x.data(), work.data());
-        double err = 0.0;
-        for (int i = 0; i < n; ++i)
-          for (int c = 0; c < 3; ++c) err = std::max(err, std::abs(x[3 * i + c] - expected(i, c)));
-        EXPECT_LT(err, 1e-10 * expected.cwiseAbs().maxCoeff()) << threads << " threads";
-      }
+      for (int rep = 0; rep < 3; ++rep)  // repeated solves: no state left behind
+        EXPECT_LT(inPlaceSolveError(chol, b, expected), 1e-10 * expected.cwiseAbs().maxCoeff()) << threads;
       EXPECT_LT((chol.solve(b) - expected).norm(), 1e-10 * expected.norm());
     });
   }

@@ -8,6 +8,43 @@
 #include "drape/pd/subtree_groups.h"
 
 namespace drape::pd {
+namespace {
+
+// The two kernels of the triangular solves for three right-hand sides (w row-major, 3 per row), over the entries
+// [begin, end) of one row or column of L: (indices, values).
+// Row i solved by a dot product with the entries' rows, which are solved already: w_i = (w_i - sum v w_k) / L_ii.
+inline void solveByDot(double* w, int i, const int* index, const double* value, int begin, int end,
+                       double invDiagonal) {
+  double a = w[3 * i], b = w[3 * i + 1], c = w[3 * i + 2];
+  for (int q = begin; q < end; ++q) {
+    const double* wk = w + 3 * index[q];
+    const double v = value[q];
+    a -= v * wk[0];
+    b -= v * wk[1];
+    c -= v * wk[2];
+  }
+  w[3 * i] = a * invDiagonal;
+  w[3 * i + 1] = b * invDiagonal;
+  w[3 * i + 2] = c * invDiagonal;
+}
+
+// Row i solved (w_i / L_ii, its share already subtracted), then subtracted from the entries' rows: w_k -= v w_i.
+inline void solveAndScatter(double* w, int i, const int* index, const double* value, int begin, int end,
+                            double invDiagonal) {
+  const double a = w[3 * i] * invDiagonal, b = w[3 * i + 1] * invDiagonal, c = w[3 * i + 2] * invDiagonal;
+  w[3 * i] = a;
+  w[3 * i + 1] = b;
+  w[3 * i + 2] = c;
+  for (int q = begin; q < end; ++q) {
+    double* wk = w + 3 * index[q];
+    const double v = value[q];
+    wk[0] -= v * a;
+    wk[1] -= v * b;
+    wk[2] -= v * c;
+  }
+}
+
+}  // namespace
 
 bool SparseCholesky::factor(const Eigen::SparseMatrix<double>& input, CholeskySolve mode) {
   m_groupRows.clear();
@@ -134,36 +171,13 @@ void SparseCholesky::useSubtrees(SubtreeGroups plan) {
 void SparseCholesky::solveSubtreeParallel(double* w) const {
   const int* column = m_column.data();
   const double* value = m_rowValue.data();
-  // Forward, row i: y_i = (w_i - sum_j L_ij y_j) / L_ii; its columns j are descendants of i (same group or below).
+  // Forward by rows: row i's columns are its descendants (its group, or a group below a top row). Backward by rows
+  // in reverse: row i is final once every ancestor has subtracted its share, and then passes its own share on.
   auto forwardRow = [&](int i) {
-    double a = w[3 * i], b = w[3 * i + 1], c = w[3 * i + 2];
-    for (int q = m_rowStart[i]; q < m_rowStart[i + 1]; ++q) {
-      const double* wj = w + 3 * column[q];
-      const double v = value[q];
-      a -= v * wj[0];
-      b -= v * wj[1];
-      c -= v * wj[2];
-    }
-    const double d = m_invDiagonal[i];
-    w[3 * i] = a * d;
-    w[3 * i + 1] = b * d;
-    w[3 * i + 2] = c * d;
+    solveByDot(w, i, column, value, m_rowStart[i], m_rowStart[i + 1], m_invDiagonal[i]);
   };
-  // Backward, row i (descending): x_i = w_i / L_ii once every ancestor has subtracted its share; then x_i's share
-  // goes to the descendants j of row i.
   auto backwardRow = [&](int i) {
-    const double d = m_invDiagonal[i];
-    const double a = w[3 * i] * d, b = w[3 * i + 1] * d, c = w[3 * i + 2] * d;
-    w[3 * i] = a;
-    w[3 * i + 1] = b;
-    w[3 * i + 2] = c;
-    for (int q = m_rowStart[i]; q < m_rowStart[i + 1]; ++q) {
-      double* wj = w + 3 * column[q];
-      const double v = value[q];
-      wj[0] -= v * a;
-      wj[1] -= v * b;
-      wj[2] -= v * c;
-    }
+    solveAndScatter(w, i, column, value, m_rowStart[i], m_rowStart[i + 1], m_invDiagonal[i]);
   };
   const int groups = static_cast<int>(m_groupRows.size());
   tbb::parallel_for(0, groups, [&](int g) {
@@ -197,40 +211,14 @@ void SparseCholesky::solveInPlace(double* x, double* w) const {
 }
 
 void SparseCholesky::solveSequential(double* w) const {
-  const int n = m_n;
   const int* row = m_row.data();
-  const double* val = m_value.data();
-  // Forward: L y = P b, column by column.
-  for (int j = 0; j < n; ++j) {
-    double* wj = w + 3 * j;
-    const double d = m_invDiagonal[j];
-    const double a = wj[0] * d, b = wj[1] * d, c = wj[2] * d;
-    wj[0] = a;
-    wj[1] = b;
-    wj[2] = c;
-    for (int q = m_colStart[j] + 1; q < m_colStart[j + 1]; ++q) {
-      double* wi = w + 3 * row[q];
-      const double v = val[q];
-      wi[0] -= v * a;
-      wi[1] -= v * b;
-      wi[2] -= v * c;
-    }
-  }
-  // Backward: L^T z = y, a dot product per column.
-  for (int j = n - 1; j >= 0; --j) {
-    double a = w[3 * j], b = w[3 * j + 1], c = w[3 * j + 2];
-    for (int q = m_colStart[j] + 1; q < m_colStart[j + 1]; ++q) {
-      const double* wi = w + 3 * row[q];
-      const double v = val[q];
-      a -= v * wi[0];
-      b -= v * wi[1];
-      c -= v * wi[2];
-    }
-    const double d = m_invDiagonal[j];
-    w[3 * j] = a * d;
-    w[3 * j + 1] = b * d;
-    w[3 * j + 2] = c * d;
-  }
+  const double* value = m_value.data();
+  // L by columns, the diagonal entry first: forward L y = w column by column (scatter), backward L^T z = y a dot
+  // product per column.
+  for (int j = 0; j < m_n; ++j)
+    solveAndScatter(w, j, row, value, m_colStart[j] + 1, m_colStart[j + 1], m_invDiagonal[j]);
+  for (int j = m_n - 1; j >= 0; --j)
+    solveByDot(w, j, row, value, m_colStart[j] + 1, m_colStart[j + 1], m_invDiagonal[j]);
 }
 
 Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& b) const {
