@@ -303,7 +303,8 @@ TEST(PdSystemTest, StrainProjectionIsThePolarRotation) {
       const Eigen::Matrix<double, 3, 2>& r = p.stretch;
       // Rounding in F^T F costs about eps / aspect^2 of the smaller singular value (in either method).
       const double tol = 1e-12 + 1e-15 / (aspect * aspect);
-      EXPECT_LT((r.transpose() * r - Eigen::Matrix2d::Identity()).norm(), aspect >= 5e-4 ? tol : 1e-12) << "aspect " << aspect;
+      const double orthonormality = aspect >= 5e-4 ? tol : 1e-12;
+      EXPECT_LT((r.transpose() * r - Eigen::Matrix2d::Identity()).norm(), orthonormality) << "aspect " << aspect;
       if (aspect >= 5e-4) {
         const Eigen::Matrix2d s = r.transpose() * f;
         EXPECT_LT(std::abs(s(0, 1) - s(1, 0)), tol * scale) << "aspect " << aspect;

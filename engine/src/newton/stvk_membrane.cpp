@@ -95,7 +95,8 @@ void StvkMembrane::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) con
     for (int i = 0; i < count; ++i) {
       const MembraneElement& e = m_elements[ids[i]];
       const Eigen::Matrix<double, 3, 2> f = deformationGradient(e, x);
-      // J^T sigma without forming J (strainJacobianOf): vertex k gets c_k0 s0 f0 + c_k1 s1 f1 + s2/2 (c_k0 f1 + c_k1 f0).
+      // J^T sigma without forming J (strainJacobianOf): vertex k gets
+      // c_k0 s0 f0 + c_k1 s1 f1 + s2/2 (c_k0 f1 + c_k1 f0).
       const Eigen::Vector3d sigma = (m_scale * e.area) * greenStrain(f).cwiseProduct(voigtWeights(e));
       const Eigen::Vector3d a = sigma(0) * f.col(0) + 0.5 * sigma(2) * f.col(1);
       const Eigen::Vector3d b = sigma(1) * f.col(1) + 0.5 * sigma(2) * f.col(0);
