@@ -278,8 +278,14 @@ TEST_F(InteractionTest, FabricChangeDuringADrapeRestartsFromTheLastPreviewState)
   runToFinish(actions().preview);
   const auto preview = window->currentSnapshot();
   ASSERT_GT((preview->positions - placed->positions).rowwise().norm().maxCoeff(), 0.01);
-  // A long drape: lifting the step limit continues the finished preview where it is (a continued edit).
-  setMaxSteps(100000);
+  // A long drape: lifting the step limit continues the finished preview where it is (a continued edit). Without
+  // the scene's time limit and the early stop the drape also runs until the pause below: on a loaded machine the
+  // worker could otherwise finish the drape before the UI thread pauses it.
+  ASSERT_TRUE(window->document()->setSettings({{"solver.max_steps", "100000"},
+                                               {"solver.max_sim_time", "1000"},
+                                               {"solver.newton.early_stop_threshold", "0"}},
+                                              "Long drape"));
+  ASSERT_TRUE(waitUntil([&] { return controller()->runState() != qt::RunState::Running; }));
   ASSERT_TRUE(waitUntil([&] { return controller()->runState() == qt::RunState::Paused; }));
   ASSERT_TRUE(waitUntil([&] { return window->currentSnapshot() != preview; }));
   EXPECT_EQ(window->currentSnapshot()->time, preview->time);
