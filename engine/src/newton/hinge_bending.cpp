@@ -194,19 +194,19 @@ Grad12 hingeBendGradient(const Hinge& hinge, const Eigen::VectorXd& x, bool clos
   phi = theta * fade;
   // + theta grad(fade); d|nA|/dx1 = d2 x nA^, d|nA|/dx2 = nA^ x e; d|nB|/dx3 = e x nB^, d|nB|/dx1 = nB^ x d3;
   // x0 takes minus the sum (translation invariance).
+  // One wing's term: c times the gradients of its |n| at x1 and at its own vertex (slot 2 for A, 3 for B).
+  auto addWing = [&](double c, const Eigen::Vector3d& at1, const Eigen::Vector3d& atOwn, int ownSlot) {
+    g.segment<3>(0) -= c * (at1 + atOwn);
+    g.segment<3>(3) += c * at1;
+    g.segment<3>(3 * ownSlot) += c * atOwn;
+  };
   if (dcA != 0.0) {
-    const Eigen::Vector3d n = na / la, g1 = d2.cross(n), g2 = n.cross(e);
-    const double c = theta * cB * dcA;
-    g.segment<3>(0) -= c * (g1 + g2);
-    g.segment<3>(3) += c * g1;
-    g.segment<3>(6) += c * g2;
+    const Eigen::Vector3d n = na / la;
+    addWing(theta * cB * dcA, d2.cross(n), n.cross(e), 2);
   }
   if (dcB != 0.0) {
-    const Eigen::Vector3d n = nb / lb, g1 = n.cross(d3), g3 = e.cross(n);
-    const double c = theta * cA * dcB;
-    g.segment<3>(0) -= c * (g1 + g3);
-    g.segment<3>(3) += c * g1;
-    g.segment<3>(9) += c * g3;
+    const Eigen::Vector3d n = nb / lb;
+    addWing(theta * cA * dcB, n.cross(d3), e.cross(n), 3);
   }
   return g;
 }
