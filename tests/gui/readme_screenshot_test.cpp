@@ -1,6 +1,6 @@
 // Writes the README screenshot (docs/screenshot.png) when DRAPE_SCREENSHOT names the output file:
-//   DRAPE_SCREENSHOT=docs/screenshot.png xvfb-run -a -s "-screen 0 1600x1000x24" \
-//     build/tests/drape_gui_tests --gtest_filter='ReadmeScreenshot.*'
+//   DRAPE_SCREENSHOT=docs/screenshot.png xvfb-run -a -s "-screen 0 1600x1000x24"
+//     build/tests/drape_gui_tests --gtest_filter='ReadmeScreenshot.*'   (one command, on one line)
 // DRAPE_SCREENSHOT_SCENE picks the scene (default: assets/scenes/default.json), DRAPE_SCREENSHOT_TIME the
 // simulated time to drape before the picture (default 1.5 s), DRAPE_SCREENSHOT_EDGE the mesh edge length (m).
 // Skipped otherwise: it takes minutes.

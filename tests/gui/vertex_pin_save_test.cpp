@@ -28,6 +28,12 @@ void writeJson(const std::filesystem::path& file, const QJsonObject& root) {
   f.write(QJsonDocument(root).toJson());
 }
 
+qt::SceneState stateOf(const std::filesystem::path& file) {
+  qt::SceneState state;
+  state.input = file;
+  return state;
+}
+
 // The vertex with the smallest value of dir . position (a corner of the flat square tablecloth for a diagonal dir).
 int extremeVertex(const Garment& g, const Eigen::Vector3d& dir) {
   int best = 0;
@@ -76,7 +82,7 @@ TEST_F(VertexPinSaveTest, SavedPinsCarryPositionsAndLoadBackOntoTheSameVertices)
   qt::SceneDocument reopened;
   ASSERT_TRUE(reopened.open(file));
   EXPECT_EQ(reopened.vertexPins(), pinned);
-  EXPECT_EQ(Simulation(loadScene(qt::SceneState{file}.request())).pinned(), pinned);
+  EXPECT_EQ(Simulation(loadScene(stateOf(file).request())).pinned(), pinned);
 
   // Stale indices in the file (as after a renumbering of the mesh): the positions still pin the same vertices.
   QJsonObject root = readJson(file);
@@ -85,7 +91,7 @@ TEST_F(VertexPinSaveTest, SavedPinsCarryPositionsAndLoadBackOntoTheSameVertices)
   root["pins"] = QJsonArray{stale};
   const std::filesystem::path staleFile = file.parent_path() / "stale.json";
   writeJson(staleFile, root);
-  EXPECT_EQ(Simulation(loadScene(qt::SceneState{staleFile}.request())).pinned(), pinned);
+  EXPECT_EQ(Simulation(loadScene(stateOf(staleFile).request())).pinned(), pinned);
   qt::SceneDocument staleDocument;
   ASSERT_TRUE(staleDocument.open(staleFile));
   EXPECT_EQ(staleDocument.vertexPins(), pinned) << "the document shows the vertices actually pinned";

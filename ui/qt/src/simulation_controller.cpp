@@ -91,7 +91,9 @@ void SimulationController::resume() {
 }
 
 void SimulationController::reset() {
-  m_worker->cancel();
+  // Interrupted, not cancelled: a cancel's snapshot of the old simulation would reach the UI after the reset was
+  // asked for (and before the placed garment's).
+  m_worker->interrupt();
   QMetaObject::invokeMethod(m_worker, &SimulationWorker::reset, Qt::QueuedConnection);
 }
 

@@ -37,11 +37,15 @@ std::optional<ResumeState> SimulationWorker::latestResumeState() const {
   return m_resume;
 }
 
-void SimulationWorker::cancel() {
+void SimulationWorker::interrupt() {
   ++m_cancelGeneration;
   m_running.store(false);
-  m_cancelPending.store(true);
   if (auto simulation = current()) simulation->requestCancel();
+}
+
+void SimulationWorker::cancel() {
+  m_cancelPending.store(true);
+  interrupt();
   // Queued behind a step in progress: its report reaches the UI before the state change.
   QMetaObject::invokeMethod(this, &SimulationWorker::finishCancel, Qt::QueuedConnection);
 }

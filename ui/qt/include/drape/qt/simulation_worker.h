@@ -40,7 +40,10 @@ class SimulationWorker : public QObject {
   // Cancelled on the worker thread, after the report of a step in progress (Cancelled or not) has been sent. A
   // later start/preview/drape command clears the engine's cancel flag and continues from the kept state.
   void cancel();
-  // Thread-safe: the number of cancel() calls so far. A run command carries the value its caller saw, so a
+  // Thread-safe: the interruption of cancel() without its Cancelled state and snapshot, for a command queued right
+  // after it that replaces the simulation and announces the next state itself (reset).
+  void interrupt();
+  // Thread-safe: the number of cancel() and interrupt() calls so far. A run command carries the value its caller saw, so a
   // command issued before a cancel (still queued when the cancel happens) does not undo it.
   int cancelGeneration() const { return m_cancelGeneration.load(); }
   // Thread-safe: the latest state.
