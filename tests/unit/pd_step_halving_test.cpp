@@ -89,7 +89,9 @@ TEST(PdStepHalving, ConvergedStepsGrowTheStepBack) {
       EXPECT_DOUBLE_EQ(r.timeStep, s.timeStep / 2);
     }
     // A step at h either converged or was redone; one at h / 2 converged or is kept capped.
-    if (r.timeStep == s.timeStep) EXPECT_EQ(r.status, PreviewStatus::Converged) << "step " << i;
+    if (r.timeStep == s.timeStep) {
+      EXPECT_EQ(r.status, PreviewStatus::Converged) << "step " << i;
+    }
   }
   std::printf("[ PdStepHalving ] %d of %zu steps at h/2 (first: step %d), %d attempts redone\n", halved,
               reports.size(), firstHalved, splits);

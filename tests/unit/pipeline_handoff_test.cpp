@@ -59,5 +59,15 @@ TEST(PipelineHandoff, PreviewHandsOverOnceTheHandoffSpeedHeldForTheWindow) {
   EXPECT_LT(handoff, 0.32);
 }
 
+TEST(PipelineHandoff, RelaxingPreviewIsNotSettledByItsZeroedVelocities) {
+  // While the preview relaxes it zeroes the velocities after every step, but the cloth still falls h^2 g per
+  // step (h g = 0.08 m/s at h = 1/120 s, above the 0.01 m/s rest speed): the settle test reads the step's motion.
+  Simulation sim(coarseTablecloth({{"solver.stage", "preview"}, {"solver.preview.relaxation_time", "0.3"}}));
+  StepReport last;
+  while (sim.time() < 0.25 && !sim.finished()) last = sim.step();
+  EXPECT_FALSE(sim.finished()) << "settled at t = " << sim.time() << " s while relaxing";
+  EXPECT_GT(last.kineticEnergy, 0.0);
+}
+
 }  // namespace
 }  // namespace drape::test

@@ -205,6 +205,7 @@ StepReport Simulation::step() {
   StepReport report;
   if (m_solver->preview) {
     pd::PreviewSolver& preview = *m_solver->preview;
+    const Eigen::VectorXd before = preview.positions();
     const pd::PreviewReport r = preview.step();
     report.status = toStepStatus(r.status);
     report.stage = "preview";
@@ -218,7 +219,10 @@ StepReport Simulation::step() {
     report.localTime = r.localTime;
     report.globalTime = r.globalTime;
     report.splits = r.splits;
-    const Eigen::VectorXd& v = preview.velocities();
+    // Speeds of the step's motion, not the velocities carried on (zeroed while the preview relaxes).
+    const bool stepped = r.status == pd::PreviewStatus::Converged || r.status == pd::PreviewStatus::MaxIterations;
+    const Eigen::VectorXd v = stepped ? Eigen::VectorXd((preview.positions() - before) / r.timeStep)
+                                      : preview.velocities();
     std::vector<double> energies(m_solver->masses.size()), speeds(m_solver->masses.size());
     for (Eigen::Index i = 0; i < m_solver->masses.size(); ++i) {
       speeds[i] = v.segment<3>(3 * i).norm();
