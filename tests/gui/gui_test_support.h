@@ -73,10 +73,21 @@ inline std::filesystem::path defaultScene() {
   return assetsDir() / "scenes" / "tablecloth.json";
 }
 
-// A shown main window with the coarse default scene open and its first snapshot received; null on failure.
-inline std::unique_ptr<qt::MainWindow> openDefaultWindow(qt::UserDialogs* dialogs) {
+// Settings under which a drape runs until it is paused: no simulated-time limit and no early stop. Tests that
+// pause "after n reports" need them: the worker can outpace the UI thread and finish a coarse drape before the
+// pause arrives.
+inline std::vector<std::pair<std::string, std::string>> unendingDrapeOverrides() {
+  return {{"solver.max_sim_time", "1000"}, {"solver.newton.early_stop_threshold", "0"}};
+}
+
+// A shown main window with the coarse default scene (plus `extra` settings) open and its first snapshot
+// received; null on failure.
+inline std::unique_ptr<qt::MainWindow> openDefaultWindow(
+    qt::UserDialogs* dialogs, const std::vector<std::pair<std::string, std::string>>& extra = {}) {
   auto window = std::make_unique<qt::MainWindow>(dialogs);
-  window->document()->setBaseOverrides(coarseOverrides());
+  auto overrides = coarseOverrides();
+  overrides.insert(overrides.end(), extra.begin(), extra.end());
+  window->document()->setBaseOverrides(overrides);
   window->resize(1200, 800);
   window->show();
   if (!QTest::qWaitForWindowExposed(window.get()) || !window->openFile(defaultScene()) ||

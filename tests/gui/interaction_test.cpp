@@ -40,7 +40,7 @@ class InteractionTest : public ::testing::Test {
   void SetUp() override {
     if (!guiHaveDisplay()) GTEST_SKIP() << "no display: run under xvfb-run -a";
     guiApplication();
-    window = openDefaultWindow(&dialogs);
+    window = openDefaultWindow(&dialogs, unendingDrapeOverrides());
     ASSERT_NE(window, nullptr) << "the default scene did not open";
     placed = window->currentSnapshot();
     QObject::connect(controller(), &qt::SimulationController::snapshotReady, window.get(),

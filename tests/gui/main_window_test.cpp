@@ -31,7 +31,7 @@ class MainWindowTest : public ::testing::Test {
   void SetUp() override {
     if (!guiHaveDisplay()) GTEST_SKIP() << "no display: run under xvfb-run -a";
     guiApplication();
-    window = openDefaultWindow(&dialogs);
+    window = openDefaultWindow(&dialogs, unendingDrapeOverrides());
     ASSERT_NE(window, nullptr) << "the default scene did not open";
   }
   void TearDown() override {
