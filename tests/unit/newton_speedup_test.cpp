@@ -233,6 +233,73 @@ TEST(NewtonSpeedup, FoldedDissipationsAssembleTheSameSum) {
   EXPECT_EQ(gDissipation.norm(), 0.0);
 }
 
+// The dissipations keep x_n compactly (F_n per triangle; per hinge the angle gradient with an offset, taken from
+// the bending's recorded gradient pass when that was at x_n): their values and gradients against the definition
+// E = 0.5 (J d)^T W (J d), J formed at x_n from scratch, and the same dissipation with and without the recording.
+TEST(NewtonSpeedup, CompactLaggedDissipationsMatchTheirDefinition) {
+  ClothModel m = gridCloth(12, 0.02, 0.3, 3);
+  const Eigen::VectorXd xn = gridCloth(12, 0.02, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(xn.size());
+  const Eigen::VectorXd& x = m.positions;
+  const double h = 1e-3, scale = 0.7, betaS = 1e-2, betaB = 1e-1;
+  StvkMembrane membrane(m);
+  HingeBending bending(m);
+  MembraneDissipation stretch(membrane.elements(), betaS);
+  BendingDissipation computed(bending.hinges(), betaB), reused(bending.hinges(), betaB);
+  bending.setRecordAngleGradients(true);
+  reused.setGradientSource(&bending);
+  const StepContext ctx = context(xn, v0, true);
+  bending.beginStep(ctx);
+  stretch.beginStep(ctx);
+
+  // Stretch: sum over triangles of 0.5 (J d)^T W (J d).
+  double expected = 0.0;
+  Eigen::VectorXd expectedGradient = Eigen::VectorXd::Zero(x.size());
+  for (const MembraneElement& e : membrane.elements()) {
+    const Eigen::Matrix<double, 3, 9> j = greenStrainJacobian(e, xn);
+    Eigen::Matrix<double, 9, 1> d;
+    for (int k = 0; k < 3; ++k) d.segment<3>(3 * k) = x.segment<3>(3 * e.v[k]) - xn.segment<3>(3 * e.v[k]);
+    const Eigen::Vector3d w = (betaS * scale / h * e.area) * Eigen::Vector3d(e.kWarp, e.kWeft, 2.0 * e.kShear);
+    const Eigen::Vector3d rate = j * d;
+    expected += 0.5 * rate.dot(w.cwiseProduct(rate));
+    const Eigen::Matrix<double, 9, 1> ge = j.transpose() * w.cwiseProduct(rate);
+    for (int k = 0; k < 3; ++k) expectedGradient.segment<3>(3 * e.v[k]) += ge.segment<3>(3 * k);
+  }
+  ASSERT_GT(expected, 0.0);
+  EXPECT_NEAR(stretch.value(x), expected, 1e-12 * expected);
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
+  stretch.addGradient(x, g);
+  EXPECT_LT((g - expectedGradient).norm(), 1e-12 * expectedGradient.norm());
+
+  // Bending: sum over hinges of 0.5 c (grad phi(x_n) . d)^2, with the gradients computed (no recording yet,
+  // then recorded at another x) and recorded at x_n.
+  double expectedBend = 0.0;
+  for (const Hinge& hg : bending.hinges()) {
+    double phi = 0.0;
+    const Eigen::Matrix<double, 12, 1> gn = hingeBendGradient(hg, xn, true, phi);
+    double rate = 0.0;
+    for (int k = 0; k < 4; ++k) rate += gn.segment<3>(3 * k).dot(x.segment<3>(3 * hg.v[k]) - xn.segment<3>(3 * hg.v[k]));
+    expectedBend += 0.5 * (betaB * scale / h * hg.stiffness) * rate * rate;
+  }
+  ASSERT_GT(expectedBend, 0.0);
+  computed.beginStep(ctx);
+  EXPECT_NEAR(computed.value(x), expectedBend, 1e-10 * expectedBend);
+  Eigen::VectorXd unused = Eigen::VectorXd::Zero(x.size());
+  bending.addGradient(x, unused);  // records at x, not at x_n
+  EXPECT_EQ(bending.recordedGradientsAt(xn, true), nullptr);
+  reused.beginStep(ctx);
+  EXPECT_NEAR(reused.value(x), expectedBend, 1e-10 * expectedBend) << "recorded at another x: recomputed";
+  bending.addGradient(xn, unused);  // the accepted state of a step
+  ASSERT_NE(bending.recordedGradientsAt(xn, true), nullptr);
+  EXPECT_EQ(bending.recordedGradientsAt(xn, false), nullptr) << "recorded in closed form";
+  reused.beginStep(ctx);
+  EXPECT_NEAR(reused.value(x), expectedBend, 1e-10 * expectedBend) << "recorded at x_n";
+  Eigen::VectorXd gComputed = Eigen::VectorXd::Zero(x.size()), gReused = Eigen::VectorXd::Zero(x.size());
+  computed.addGradient(x, gComputed);
+  reused.addGradient(x, gReused);
+  ASSERT_GT(gComputed.norm(), 0.0);
+  EXPECT_LT((gReused - gComputed).norm(), 1e-12 * gComputed.norm());
+}
+
 TEST(NewtonSpeedup, FastAssemblyEqualsSerialSearchAssembly) {
   ClothModel m = gridCloth(30, 0.01, 0.3, 3);  // 841 vertices: colours large enough to run in parallel chunks
   Eigen::VectorXd x0 = gridCloth(30, 0.01, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(x0.size());
@@ -262,6 +329,59 @@ TEST(NewtonSpeedup, SolverResultsIndependentOfSwitches) {
       reference = solver.positions();
     else
       EXPECT_LT((solver.positions() - reference).norm(), 1e-8 * reference.norm());
+  }
+}
+
+// Relaxation steps take their first membrane and bending gradient from the last step's accepted line-search pass
+// (NewtonSettings::stepStartGradients): the same trajectory as evaluating it afresh, through the stiffness ramp,
+// fresh and reused Hessians; and the record is really used (the first passes it saves are not run).
+TEST(NewtonSpeedup, RecordedStepStartGradientsGiveTheSameRelaxation) {
+  const int n = 15;
+  ClothModel m = gridCloth(n, 1.0 / (n - 1), 0.05, 5);
+  m.pinned = {n * (n - 1), n * n - 1};
+  Eigen::VectorXd reference;
+  for (int config = 0; config < 2; ++config) {
+    NewtonSettings s;
+    s.hMax = 4e-3;  // relaxation at 2.5e-4 s: 400 steps; run 60 of them
+    s.stepStartGradients = config == 1;
+    NewtonSolver solver(m, s);
+    int reused = 0, recorded = 0;
+    for (int k = 0; k < 60; ++k) {
+      const NewtonStepReport r = solver.step();
+      ASSERT_EQ(r.status, NewtonStatus::Converged);
+      ASSERT_TRUE(r.relaxing);
+      reused += r.hessianReused;
+      recorded += r.recordedGradients;
+    }
+    EXPECT_GT(reused, 20);
+    if (config == 0)
+      EXPECT_EQ(recorded, 0);
+    else
+      EXPECT_GE(recorded, 2 * 50) << "membrane and bending from the record in (nearly) every step";
+    ASSERT_GT((solver.positions() - m.positions).norm(), 1e-4);  // the cloth has moved
+    if (config == 0)
+      reference = solver.positions();
+    else
+      EXPECT_LT((solver.positions() - reference).norm(), 1e-10 * reference.norm());
+  }
+  // The recorded gradient itself: at the recorded x (rescaled to the current stiffness scale), not elsewhere.
+  StvkMembrane membrane(m);
+  HingeBending bending(m);
+  const Eigen::VectorXd& x = m.positions;
+  const Eigen::VectorXd x1 = gridCloth(n, 1.0 / (n - 1), 0.05, 6).positions, v0 = Eigen::VectorXd::Zero(x.size());
+  for (Energy* e : std::vector<Energy*>{&membrane, &bending}) {
+    StepContext ctx = context(x, v0, true);
+    e->beginStep(ctx);
+    e->setRecordStepStartGradient(true);
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size()), r = Eigen::VectorXd::Zero(x.size());
+    EXPECT_FALSE(e->addRecordedStepStartGradient(x, r)) << e->name() << ": nothing recorded yet";
+    e->addGradient(x, g);
+    ctx.stiffnessScale = 0.35;  // half the scale of context()
+    e->beginStep(ctx);
+    ASSERT_TRUE(e->addRecordedStepStartGradient(x, r)) << e->name();
+    ASSERT_GT(g.norm(), 0.0);
+    EXPECT_LT((r - 0.5 * g).norm(), 1e-14 * g.norm()) << e->name();
+    EXPECT_FALSE(e->addRecordedStepStartGradient(x1, r)) << e->name() << ": recorded at another x";
   }
 }
 

@@ -242,19 +242,37 @@ double HingeBending::value(const Eigen::VectorXd& x) const {
   return m_scale * sum;
 }
 
+const std::vector<Grad12>* HingeBending::recordedGradientsAt(const Eigen::VectorXd& x, bool closedForm) const {
+  if (m_recordedClosedForm != closedForm || !samePositions(m_recordedAt, x)) return nullptr;
+  return &m_recorded;
+}
+
 void HingeBending::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
   const bool closedForm = m_options.closedFormBending;
   const BendingDissipation* fold = m_options.foldDissipation ? m_dissipation : nullptr;
+  if (m_record) {
+    m_recorded.resize(m_hinges.size());
+    m_recordedAt.resize(0);  // invalid until the pass is complete
+  }
+  const bool recordGradient = m_recordedGradient.enabled;
+  if (recordGradient) m_recordedGradient.begin(x.size());
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
     for (int i = 0; i < count; ++i) {
       const Hinge& h = m_hinges[ids[i]];
       double phi = 0.0;
       const Grad12 grad = hingeBendGradient(h, x, closedForm, phi);
+      if (m_record) m_recorded[ids[i]] = grad;
       Grad12 ge = (m_scale * h.stiffness * phi) * grad;
+      if (recordGradient) m_stencils.addGradient(ids[i], ge, m_recordedGradient.gradient);
       if (fold) ge += fold->stencilGradient(ids[i], x);
       m_stencils.addGradient(ids[i], ge, g);
     }
   });
+  if (recordGradient) m_recordedGradient.finish(x, m_scale);
+  if (m_record) {
+    m_recordedAt = x;
+    m_recordedClosedForm = closedForm;
+  }
 }
 
 void HingeBending::addHessian(const Eigen::VectorXd& x, BlockMatrix& hm) const { assemble(x, nullptr, hm); }

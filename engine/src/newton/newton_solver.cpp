@@ -76,6 +76,8 @@ NewtonSolver::NewtonSolver(ClothModel model, NewtonSettings settings, std::vecto
   if (m_settings.betaBend > 0.0 && !hinges.empty()) {
     auto bend = std::make_unique<BendingDissipation>(hinges, m_settings.betaBend);
     bendingEnergy->foldDissipation(bend.get());
+    bendingEnergy->setRecordAngleGradients(true);
+    bend->setGradientSource(bendingEnergy);
     bend->setFolded(true);
     m_energies.push_back(std::move(bend));
   }
@@ -149,17 +151,31 @@ void NewtonSolver::momentumResidual(const Eigen::VectorXd& g, const Eigen::Vecto
   for (int i = 0; i < m_mass.size(); ++i) b.segment<3>(3 * i) += m_mass(i) * (m_v.segment<3>(3 * i) - v.segment<3>(3 * i));
 }
 
-bool NewtonSolver::assembleFirstIteration(const Eigen::VectorXd& x, double h, Eigen::VectorXd& g) {
+bool NewtonSolver::assembleFirstIteration(const Eigen::VectorXd& x, double h, bool atStepStart, Eigen::VectorXd& g,
+                                          int& recordedGradients) {
   const bool reuse = m_settings.hessianReuseSteps > 0 && m_elasticHessianH == h &&
                      m_elasticHessianAge < m_settings.hessianReuseSteps && m_lastNewtonIterations == 1 &&
                      m_elasticHessian.size() == size_t(m_matrix.staticBlockCount());
+  // At the step's start (relaxation: x = x_n, zero velocities) an energy may hand back the gradient its last
+  // pass recorded there (the accepted state of the last step).
+  auto recorded = [&](size_t k) {
+    const bool used = atStepStart && m_energies[k]->addRecordedStepStartGradient(x, g);
+    recordedGradients += used;
+    return used;
+  };
   if (reuse) {
     m_matrix.setStaticValues(m_elasticHessian);
-    for (size_t k = 0; k < m_elasticCount; ++k) m_energies[k]->addGradient(x, g);
+    for (size_t k = 0; k < m_elasticCount; ++k)
+      if (!recorded(k)) m_energies[k]->addGradient(x, g);
     ++m_elasticHessianAge;
   } else {
     m_matrix.setZero();
-    for (size_t k = 0; k < m_elasticCount; ++k) m_energies[k]->addGradientAndHessian(x, g, m_matrix);
+    for (size_t k = 0; k < m_elasticCount; ++k) {
+      if (recorded(k))
+        m_energies[k]->addHessian(x, m_matrix);
+      else
+        m_energies[k]->addGradientAndHessian(x, g, m_matrix);
+    }
     saveElasticHessian(h);
   }
   for (size_t k = m_elasticCount; k < m_energies.size(); ++k) m_energies[k]->addGradientAndHessian(x, g, m_matrix);
@@ -191,7 +207,8 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
   // The first iteration needs the gradient and the Hessian at the same x: one pass over the stencils.
   auto t0 = Clock::now();
   Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
-  report.hessianReused = assembleFirstIteration(x, h, g);
+  const bool atStepStart = m_settings.stepStartGradients && m_v.isZero(0.0);
+  report.hessianReused = assembleFirstIteration(x, h, atStepStart, g, report.recordedGradients);
   momentumResidual(g, v, h, b);
   report.hessianSeconds += secondsSince(t0);
   if (!b.allFinite()) return NewtonStatus::Diverged;
@@ -264,6 +281,9 @@ NewtonStepReport NewtonSolver::step() {
   m_h = std::min(m_h, hCap);
   const double scale =
       relaxing ? s.relaxationStartScale + (1.0 - s.relaxationStartScale) * (m_time / s.relaxationTime) : 1.0;
+  // A relaxation step ends with zero velocities, so the next one starts where this one's last gradient pass ran.
+  for (size_t k = 0; k < m_elasticCount; ++k)
+    m_energies[k]->setRecordStepStartGradient(relaxing && s.stepStartGradients);
   Eigen::VectorXd x, v;
   while (true) {
     if (m_cancel.load()) {

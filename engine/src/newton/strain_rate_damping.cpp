@@ -33,7 +33,7 @@ MembraneDissipation::MembraneDissipation(std::vector<MembraneElement> elements, 
   stencils.reserve(m_elements.size());
   for (const auto& e : m_elements) stencils.push_back(e.v);
   m_stencils = StencilSet<3>(std::move(stencils));
-  m_jacobians.resize(m_elements.size());
+  m_startF.resize(m_elements.size());
   m_weights.assign(m_elements.size(), Eigen::Vector3d::Zero());
 }
 
@@ -42,23 +42,41 @@ void MembraneDissipation::beginStep(const StepContext& ctx) {
   const double factor = m_beta * ctx.stiffnessScale / ctx.h;
   forRange(static_cast<int>(m_elements.size()), m_options.parallel, [&](int s) {
     const MembraneElement& e = m_elements[s];
-    m_jacobians[s] = greenStrainJacobian(e, *ctx.previousPositions);
+    m_startF[s] = deformationGradient(e, *ctx.previousPositions);
     m_weights[s] = (factor * e.area) * Eigen::Vector3d(e.kWarp, e.kWeft, 2.0 * e.kShear);
   });
+}
+
+Eigen::Vector3d MembraneDissipation::strainChange(int s, const Eigen::Matrix<double, 3, 2>& f) const {
+  const Eigen::Matrix<double, 3, 2>& fn = m_startF[s];
+  const Eigen::Matrix<double, 3, 2> df = f - fn;
+  return {fn.col(0).dot(df.col(0)), fn.col(1).dot(df.col(1)),
+          0.5 * (fn.col(0).dot(df.col(1)) + fn.col(1).dot(df.col(0)))};
 }
 
 double MembraneDissipation::value(const Eigen::VectorXd& x) const {
   double sum = 0.0;
   for (int s = 0; s < m_stencils.size(); ++s) {
-    Eigen::Vector3d rate = m_jacobians[s] * gatherDelta<3>(m_stencils[s], x, *m_previous);
+    const Eigen::Vector3d rate = strainChange(s, deformationGradient(m_elements[s], x));
     sum += 0.5 * rate.dot(m_weights[s].cwiseProduct(rate));
   }
   return sum;
 }
 
 Eigen::Matrix<double, 9, 1> MembraneDissipation::stencilGradient(int s, const Eigen::VectorXd& x) const {
-  const Eigen::Vector3d rate = m_jacobians[s] * gatherDelta<3>(m_stencils[s], x, *m_previous);
-  return m_jacobians[s].transpose() * m_weights[s].cwiseProduct(rate);
+  return stencilGradient(s, deformationGradient(m_elements[s], x));
+}
+
+Eigen::Matrix<double, 9, 1> MembraneDissipation::stencilGradient(int s, const Eigen::Matrix<double, 3, 2>& f) const {
+  // J^T sigma without forming J: vertex k gets c_k0 (s0 f0 + s2/2 f1) + c_k1 (s1 f1 + s2/2 f0), f = F_n.
+  const Eigen::Vector3d sigma = m_weights[s].cwiseProduct(strainChange(s, f));
+  const Eigen::Matrix<double, 3, 2>& fn = m_startF[s];
+  const Eigen::Vector3d a = sigma(0) * fn.col(0) + 0.5 * sigma(2) * fn.col(1);
+  const Eigen::Vector3d b = sigma(1) * fn.col(1) + 0.5 * sigma(2) * fn.col(0);
+  const MembraneElement& e = m_elements[s];
+  Eigen::Matrix<double, 9, 1> ge;
+  for (int k = 0; k < 3; ++k) ge.segment<3>(3 * k) = e.c[k](0) * a + e.c[k](1) * b;
+  return ge;
 }
 
 void MembraneDissipation::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
@@ -68,11 +86,15 @@ void MembraneDissipation::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd&
   });
 }
 
-Eigen::Matrix<double, 9, 9> MembraneDissipation::stencilDerivatives(int s, const Eigen::VectorXd& x,
+Eigen::Matrix<double, 9, 9> MembraneDissipation::stencilHessian(int s) const {
+  const Eigen::Matrix<double, 3, 9> j = greenStrainJacobian(m_elements[s], m_startF[s]);
+  return j.transpose() * m_weights[s].asDiagonal() * j;
+}
+
+Eigen::Matrix<double, 9, 9> MembraneDissipation::stencilDerivatives(int s, const Eigen::Matrix<double, 3, 2>& f,
                                                                     Eigen::Matrix<double, 9, 1>* ge) const {
-  Eigen::Matrix<double, 9, 9> he = m_jacobians[s].transpose() * m_weights[s].asDiagonal() * m_jacobians[s];
-  if (ge) *ge = he * gatherDelta<3>(m_stencils[s], x, *m_previous);  // quadratic in d = x - x_n
-  return he;
+  if (ge) *ge = stencilGradient(s, f);
+  return stencilHessian(s);
 }
 
 void MembraneDissipation::addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const { assemble(x, nullptr, h); }
@@ -86,10 +108,9 @@ void MembraneDissipation::assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g,
   const bool cached = m_options.cachedBlockMap;
   if (cached) m_stencils.prepare(h);
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
-    Eigen::Matrix<double, 9, 1> ge;
     for (int i = 0; i < count; ++i) {
-      m_stencils.addHessian(ids[i], stencilDerivatives(ids[i], x, g ? &ge : nullptr), h, cached);
-      if (g) m_stencils.addGradient(ids[i], ge, *g);
+      m_stencils.addHessian(ids[i], stencilHessian(ids[i]), h, cached);
+      if (g) m_stencils.addGradient(ids[i], stencilGradient(ids[i], x), *g);
     }
   });
 }
@@ -101,6 +122,7 @@ BendingDissipation::BendingDissipation(std::vector<Hinge> hinges, double beta)
   for (const auto& h : m_hinges) stencils.push_back(h.v);
   m_stencils = StencilSet<4>(std::move(stencils));
   m_gradients.assign(m_hinges.size(), Eigen::Matrix<double, 12, 1>::Zero());
+  m_offsets.assign(m_hinges.size(), 0.0);
   m_coefficients.assign(m_hinges.size(), 0.0);
 }
 
@@ -108,24 +130,44 @@ void BendingDissipation::beginStep(const StepContext& ctx) {
   beginLagged(ctx);
   const double factor = m_beta * ctx.stiffnessScale / ctx.h;
   const bool closedForm = m_options.closedFormBending;
+  const Eigen::VectorXd& xn = *ctx.previousPositions;
+  const std::vector<Eigen::Matrix<double, 12, 1>>* recorded =
+      m_source ? m_source->recordedGradientsAt(xn, closedForm) : nullptr;
   forRange(static_cast<int>(m_hinges.size()), m_options.parallel, [&](int s) {
-    double phi = 0.0;
-    m_gradients[s] = hingeBendGradient(m_hinges[s], *ctx.previousPositions, closedForm, phi);
+    Eigen::Matrix<double, 12, 1>& g = m_gradients[s];
+    if (recorded) {
+      g = (*recorded)[s];
+    } else {
+      double phi = 0.0;
+      g = hingeBendGradient(m_hinges[s], xn, closedForm, phi);
+    }
+    g.segment<3>(0) = -(g.segment<3>(3) + g.segment<3>(6) + g.segment<3>(9));
+    m_offsets[s] = 0.0;
+    m_offsets[s] = angleChange(s, xn);
     m_coefficients[s] = factor * m_hinges[s].stiffness;
   });
+}
+
+double BendingDissipation::angleChange(int s, const Eigen::VectorXd& x) const {
+  const std::array<int, 4>& v = m_stencils[s];
+  const Eigen::Vector3d x0 = x.segment<3>(3 * v[0]);
+  const Eigen::Matrix<double, 12, 1>& g = m_gradients[s];
+  double sum = 0.0;
+  for (int k = 1; k < 4; ++k) sum += g.segment<3>(3 * k).dot(x.segment<3>(3 * v[k]) - x0);
+  return sum - m_offsets[s];
 }
 
 double BendingDissipation::value(const Eigen::VectorXd& x) const {
   double sum = 0.0;
   for (int s = 0; s < m_stencils.size(); ++s) {
-    double rate = m_gradients[s].dot(gatherDelta<4>(m_stencils[s], x, *m_previous));
+    const double rate = angleChange(s, x);
     sum += 0.5 * m_coefficients[s] * rate * rate;
   }
   return sum;
 }
 
 Eigen::Matrix<double, 12, 1> BendingDissipation::stencilGradient(int s, const Eigen::VectorXd& x) const {
-  return (m_coefficients[s] * m_gradients[s].dot(gatherDelta<4>(m_stencils[s], x, *m_previous))) * m_gradients[s];
+  return (m_coefficients[s] * angleChange(s, x)) * m_gradients[s];
 }
 
 void BendingDissipation::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {

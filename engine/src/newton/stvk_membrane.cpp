@@ -7,13 +7,14 @@
 #include <string>
 
 namespace drape::newton {
-namespace {
 
 Eigen::Matrix<double, 3, 2> deformationGradient(const MembraneElement& e, const Eigen::VectorXd& x) {
   Eigen::Matrix<double, 3, 2> f = Eigen::Matrix<double, 3, 2>::Zero();
   for (int k = 0; k < 3; ++k) f += x.segment<3>(3 * e.v[k]) * e.c[k].transpose();
   return f;
 }
+
+namespace {
 
 // Voigt Green strain (E00, E11, E01).
 Eigen::Vector3d greenStrain(const Eigen::Matrix<double, 3, 2>& f) {
@@ -49,9 +50,7 @@ std::vector<MembraneElement> buildMembraneElements(const ClothModel& model) {
   return out;
 }
 
-namespace {
-
-Eigen::Matrix<double, 3, 9> strainJacobianOf(const MembraneElement& e, const Eigen::Matrix<double, 3, 2>& f) {
+Eigen::Matrix<double, 3, 9> greenStrainJacobian(const MembraneElement& e, const Eigen::Matrix<double, 3, 2>& f) {
   Eigen::Matrix<double, 3, 9> j;
   for (int k = 0; k < 3; ++k) {
     j.block<1, 3>(0, 3 * k) = e.c[k](0) * f.col(0).transpose();
@@ -61,10 +60,8 @@ Eigen::Matrix<double, 3, 9> strainJacobianOf(const MembraneElement& e, const Eig
   return j;
 }
 
-}  // namespace
-
 Eigen::Matrix<double, 3, 9> greenStrainJacobian(const MembraneElement& e, const Eigen::VectorXd& x) {
-  return strainJacobianOf(e, deformationGradient(e, x));
+  return greenStrainJacobian(e, deformationGradient(e, x));
 }
 
 StvkMembrane::StvkMembrane(const ClothModel& model) : m_elements(buildMembraneElements(model)) {
@@ -90,21 +87,25 @@ double StvkMembrane::value(const Eigen::VectorXd& x) const {
 
 void StvkMembrane::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
   const MembraneDissipation* fold = m_options.foldDissipation ? m_dissipation : nullptr;
+  const bool record = m_recorded.enabled;
+  if (record) m_recorded.begin(x.size());
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
     Eigen::Matrix<double, 9, 1> ge;
     for (int i = 0; i < count; ++i) {
       const MembraneElement& e = m_elements[ids[i]];
       const Eigen::Matrix<double, 3, 2> f = deformationGradient(e, x);
-      // J^T sigma without forming J (strainJacobianOf): vertex k gets
+      // J^T sigma without forming J (greenStrainJacobian): vertex k gets
       // c_k0 s0 f0 + c_k1 s1 f1 + s2/2 (c_k0 f1 + c_k1 f0).
       const Eigen::Vector3d sigma = (m_scale * e.area) * greenStrain(f).cwiseProduct(voigtWeights(e));
       const Eigen::Vector3d a = sigma(0) * f.col(0) + 0.5 * sigma(2) * f.col(1);
       const Eigen::Vector3d b = sigma(1) * f.col(1) + 0.5 * sigma(2) * f.col(0);
       for (int k = 0; k < 3; ++k) ge.segment<3>(3 * k) = e.c[k](0) * a + e.c[k](1) * b;
-      if (fold) ge += fold->stencilGradient(ids[i], x);
+      if (record) m_stencils.addGradient(ids[i], ge, m_recorded.gradient);
+      if (fold) ge += fold->stencilGradient(ids[i], f);
       m_stencils.addGradient(ids[i], ge, g);
     }
   });
+  if (record) m_recorded.finish(x, m_scale);
 }
 
 Eigen::Matrix<double, 9, 9> StvkMembrane::elementHessian(const MembraneElement& e, const Eigen::VectorXd& x) const {
@@ -113,9 +114,14 @@ Eigen::Matrix<double, 9, 9> StvkMembrane::elementHessian(const MembraneElement& 
 
 Eigen::Matrix<double, 9, 9> StvkMembrane::elementDerivatives(const MembraneElement& e, const Eigen::VectorXd& x,
                                                              Eigen::Matrix<double, 9, 1>* ge) const {
-  Eigen::Matrix<double, 3, 2> f = deformationGradient(e, x);
+  return elementDerivatives(e, deformationGradient(e, x), ge);
+}
+
+Eigen::Matrix<double, 9, 9> StvkMembrane::elementDerivatives(const MembraneElement& e,
+                                                             const Eigen::Matrix<double, 3, 2>& f,
+                                                             Eigen::Matrix<double, 9, 1>* ge) const {
   Eigen::Vector3d sigma = greenStrain(f).cwiseProduct(voigtWeights(e));  // dpsi/ds in Voigt form
-  Eigen::Matrix<double, 3, 9> j = strainJacobianOf(e, f);
+  Eigen::Matrix<double, 3, 9> j = greenStrainJacobian(e, f);
   if (ge) *ge = (m_scale * e.area) * j.transpose() * sigma;
   Eigen::Matrix<double, 9, 9> h = j.transpose() * voigtWeights(e).asDiagonal() * j;
   // Second Piola-Kirchhoff stress as a symmetric 2x2 tensor.
@@ -138,7 +144,7 @@ void StvkMembrane::addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const {
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
     for (int i = 0; i < count; ++i) {
       Eigen::Matrix<double, 9, 9> he = elementHessian(m_elements[ids[i]], x);
-      if (fold) he += fold->stencilDerivatives(ids[i], x, nullptr);
+      if (fold) he += fold->stencilHessian(ids[i]);
       m_stencils.addHessian(ids[i], he, h, cached);
     }
   });
@@ -151,9 +157,11 @@ void StvkMembrane::addGradientAndHessian(const Eigen::VectorXd& x, Eigen::Vector
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
     Eigen::Matrix<double, 9, 1> ge, gd;
     for (int i = 0; i < count; ++i) {
-      Eigen::Matrix<double, 9, 9> he = elementDerivatives(m_elements[ids[i]], x, &ge);
+      const MembraneElement& e = m_elements[ids[i]];
+      const Eigen::Matrix<double, 3, 2> f = deformationGradient(e, x);
+      Eigen::Matrix<double, 9, 9> he = elementDerivatives(e, f, &ge);
       if (fold) {
-        he += fold->stencilDerivatives(ids[i], x, &gd);
+        he += fold->stencilDerivatives(ids[i], f, &gd);
         ge += gd;
       }
       m_stencils.addHessian(ids[i], he, h, cached);

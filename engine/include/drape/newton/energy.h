@@ -66,6 +66,18 @@ class Energy {
     addHessian(x, h);
   }
 
+  // Relaxation steps start at x = x_n with zero velocities, where the lagged dissipations folded into an energy's
+  // passes vanish. There the solver may take the energy's gradient from its last gradient pass
+  // (recorded_gradient.h): adds it to g and returns true when that pass ran at x (bit for bit) with recording on,
+  // otherwise adds nothing and returns false. Never call it at any other x than the step's start x_n.
+  virtual bool addRecordedStepStartGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
+    (void)x;
+    (void)g;
+    return false;
+  }
+  // Whether gradient passes record for addRecordedStepStartGradient (costs one more scatter per pass).
+  virtual void setRecordStepStartGradient(bool record) { (void)record; }
+
   // Appends the vertex pairs (i, j), i != j, this energy couples on a topology fixed for the whole run
   // (the static block pattern, built once). Contact energies append nothing.
   virtual void addCouplings(std::vector<std::pair<int, int>>& pairs) const { (void)pairs; }

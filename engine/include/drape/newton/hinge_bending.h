@@ -18,6 +18,7 @@
 
 #include "drape/newton/cloth_model.h"
 #include "drape/newton/energy.h"
+#include "drape/newton/recorded_gradient.h"
 #include "drape/newton/stencil_set.h"
 
 namespace drape::newton {
@@ -75,6 +76,16 @@ class HingeBending : public Energy {
   // The bending dissipation on the same hinges (same order), folded into this energy's Hessian passes when
   // AssemblyOptions::foldDissipation is on (the solver also calls its setFolded). nullptr: none.
   void foldDissipation(const BendingDissipation* dissipation) { m_dissipation = dissipation; }
+  // Gradient passes (addGradient) record grad(phi) of every hinge and the positions they were taken at, for the
+  // bending dissipation's next beginStep: the line search's last evaluation is the next step's start x_n.
+  void setRecordAngleGradients(bool record) { m_record = record; }
+  bool addRecordedStepStartGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override {
+    return m_recordedGradient.addTo(x, m_scale, g);
+  }
+  void setRecordStepStartGradient(bool record) override { m_recordedGradient.enabled = record; }
+  // The recorded gradients when they were taken at x (bit for bit) in the given form; nullptr otherwise.
+  const std::vector<Eigen::Matrix<double, 12, 1>>* recordedGradientsAt(const Eigen::VectorXd& x,
+                                                                        bool closedForm) const;
 
  private:
   const BendingDissipation* m_dissipation = nullptr;
@@ -86,6 +97,11 @@ class HingeBending : public Energy {
   double m_scale = 1.0;
   bool m_exactHessian = false;
   AssemblyOptions m_options;
+  bool m_record = false;
+  mutable std::vector<Eigen::Matrix<double, 12, 1>> m_recorded;  // grad(phi) per hinge at m_recordedAt
+  mutable Eigen::VectorXd m_recordedAt;
+  mutable bool m_recordedClosedForm = true;
+  mutable RecordedGradient m_recordedGradient;  // elastic gradient of the last addGradient pass (no dissipation)
 };
 
 }  // namespace drape::newton

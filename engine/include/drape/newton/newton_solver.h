@@ -60,6 +60,10 @@ struct NewtonSettings {
   // of the Newton tolerance, instead of always reducing it 1 / tau_cg times. The step still ends below tau_n.
   // 0 = off (always tau_cg).
   double cgForcing = 0.0;
+  // Exact, not a trade (no scene setting; tests compare both): a relaxation step starts at x_n with zero
+  // velocities, so its first gradient of the membrane and the bending is the one the previous step's accepted
+  // line-search pass recorded (energy.h, addRecordedStepStartGradient).
+  bool stepStartGradients = true;
 };
 
 class PinSprings;
@@ -86,6 +90,7 @@ struct NewtonStepReport {
   double gradientSeconds = 0.0;
   double linearSolveSeconds = 0.0;
   bool hessianReused = false;  // the first iteration solved with a reused elastic Hessian (hessianReuseSteps)
+  int recordedGradients = 0;   // energies whose first gradient came from the last step's pass (stepStartGradients)
 };
 
 class NewtonSolver {
@@ -141,7 +146,9 @@ class NewtonSolver {
   double m_restSince = -1.0;
   // Assembles the first iteration's gradient g and Hessian (m_matrix, without the mass term) at x: the elastic
   // part reused when allowed (returns true), otherwise assembled and saved for reuse.
-  bool assembleFirstIteration(const Eigen::VectorXd& x, double h, Eigen::VectorXd& g);
+  // atStepStart: x is the step's start x_n and the velocities are zero (recorded gradients apply).
+  bool assembleFirstIteration(const Eigen::VectorXd& x, double h, bool atStepStart, Eigen::VectorXd& g,
+                              int& recordedGradients);
   // The Hessian of a later iteration at x, saving the elastic part for reuse.
   void assembleHessian(const Eigen::VectorXd& x, double h);
   // Copies the static values of m_matrix as the reusable elastic Hessian (settings.hessianReuseSteps > 0).

@@ -26,6 +26,9 @@ class LaggedDissipation : public Energy {
 
 // Stretch dissipation on the Green strain rate of the StVK membrane: per triangle
 // E = 0.5 (J d)^T W (J d), J the 3 x 9 Green strain Jacobian at x_n, W = beta A diag(kWarp, kWeft, 2 kShear) / h.
+// J is kept as the deformation gradient F_n at x_n (6 numbers, not 27): with dF = F(x) - F_n (F is linear in x),
+// J d = (f0 . dF0, f1 . dF1, (f0 . dF1 + f1 . dF0) / 2), f = F_n's columns, so a pass that has F(x) at hand (the
+// membrane's) needs neither J nor x_n.
 class MembraneDissipation : public LaggedDissipation {
  public:
   MembraneDissipation(std::vector<MembraneElement> elements, double beta);
@@ -38,10 +41,13 @@ class MembraneDissipation : public LaggedDissipation {
   void addCouplings(std::vector<std::pair<int, int>>& pairs) const override { m_stencils.addCouplings(pairs); }
 
   // Element Hessian of triangle s for this step (constant within it) and, when ge is given, the element gradient
-  // at x (beginStep first).
-  Eigen::Matrix<double, 9, 9> stencilDerivatives(int s, const Eigen::VectorXd& x, Eigen::Matrix<double, 9, 1>* ge) const;
-  // Element gradient of triangle s at x (beginStep first).
+  // at the triangle's deformation gradient f (beginStep first).
+  Eigen::Matrix<double, 9, 9> stencilDerivatives(int s, const Eigen::Matrix<double, 3, 2>& f,
+                                                 Eigen::Matrix<double, 9, 1>* ge) const;
+  Eigen::Matrix<double, 9, 9> stencilHessian(int s) const;
+  // Element gradient of triangle s at x, or at its deformation gradient f (beginStep first).
   Eigen::Matrix<double, 9, 1> stencilGradient(int s, const Eigen::VectorXd& x) const;
+  Eigen::Matrix<double, 9, 1> stencilGradient(int s, const Eigen::Matrix<double, 3, 2>& f) const;
   // Set by the solver when the membrane on the same triangles folds this energy into its passes
   // (AssemblyOptions::foldDissipation): addGradient, addHessian and addGradientAndHessian then add nothing.
   void setFolded(bool folded) { m_folded = folded; }
@@ -50,17 +56,22 @@ class MembraneDissipation : public LaggedDissipation {
   bool folded() const { return m_folded && m_options.foldDissipation; }
   // Hessian into h and, when g is given, the gradient into *g (one pass).
   void assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockMatrix& h) const;
+  // Strain rate times h, J d, of triangle s at deformation gradient f.
+  Eigen::Vector3d strainChange(int s, const Eigen::Matrix<double, 3, 2>& f) const;
 
   std::vector<MembraneElement> m_elements;
   bool m_folded = false;
   double m_beta;
   StencilSet<3> m_stencils;
-  std::vector<Eigen::Matrix<double, 3, 9>> m_jacobians;  // J per triangle, at x_n
-  std::vector<Eigen::Vector3d> m_weights;                // diagonal of W per triangle, N s/m (times 1/h)
+  std::vector<Eigen::Matrix<double, 3, 2>> m_startF;  // F_n per triangle, at x_n
+  std::vector<Eigen::Vector3d> m_weights;             // diagonal of W per triangle, N s/m (times 1/h)
 };
 
 // Bending dissipation on the dihedral angle rate of the hinges: per hinge E = 0.5 c (g . d)^2 with g the gradient
 // of the bending measure phi (the angle, faded on collapsing wings; hinge_bending.h) at x_n and c = beta k_e / h.
+// g sums to zero over the hinge's four vertices (translation invariance; made exact in beginStep), so
+// g . d = sum_k>0 g_k . (x_k - x_0) - o with the offset o the same sum at x_n: a pass reads no x_n. g is taken
+// from the hinge bending's last gradient evaluation when that was at x_n (the accepted state of the last step).
 class BendingDissipation : public LaggedDissipation {
  public:
   BendingDissipation(std::vector<Hinge> hinges, double beta);
@@ -79,16 +90,22 @@ class BendingDissipation : public LaggedDissipation {
   Eigen::Matrix<double, 12, 1> stencilGradient(int s, const Eigen::VectorXd& x) const;
   // As MembraneDissipation::setFolded, for the hinge bending on the same hinges.
   void setFolded(bool folded) { m_folded = folded; }
+  // The hinge bending on the same hinges, whose recorded gradients beginStep reuses (nullptr: always computed).
+  void setGradientSource(const HingeBending* bending) { m_source = bending; }
 
  private:
   bool folded() const { return m_folded && m_options.foldDissipation; }
   void assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockMatrix& h) const;  // as MembraneDissipation's
+  // g . (x - x_n) of hinge s (radians).
+  double angleChange(int s, const Eigen::VectorXd& x) const;
 
   std::vector<Hinge> m_hinges;
   bool m_folded = false;
   double m_beta;
+  const HingeBending* m_source = nullptr;
   StencilSet<4> m_stencils;
   std::vector<Eigen::Matrix<double, 12, 1>> m_gradients;  // bending-measure gradient per hinge, at x_n
+  std::vector<double> m_offsets;                          // o per hinge, radians
   std::vector<double> m_coefficients;                     // c per hinge
 };
 

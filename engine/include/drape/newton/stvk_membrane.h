@@ -9,6 +9,7 @@
 
 #include "drape/newton/cloth_model.h"
 #include "drape/newton/energy.h"
+#include "drape/newton/recorded_gradient.h"
 #include "drape/newton/stencil_set.h"
 
 namespace drape::newton {
@@ -26,8 +27,13 @@ struct MembraneElement {
 // Rest data for every triangle. Throws std::invalid_argument on a degenerate rest triangle.
 std::vector<MembraneElement> buildMembraneElements(const ClothModel& model);
 
-// Green strain rows (Voigt E00, E11, E01) differentiated w.r.t. the 9 triangle coordinates: 3 x 9.
+// Deformation gradient F (3 x 2: the rest frame's warp and weft directions mapped to 3D) of element e at x.
+Eigen::Matrix<double, 3, 2> deformationGradient(const MembraneElement& e, const Eigen::VectorXd& x);
+
+// Green strain rows (Voigt E00, E11, E01) differentiated w.r.t. the 9 triangle coordinates: 3 x 9, at x or at
+// the deformation gradient f.
 Eigen::Matrix<double, 3, 9> greenStrainJacobian(const MembraneElement& e, const Eigen::VectorXd& x);
+Eigen::Matrix<double, 3, 9> greenStrainJacobian(const MembraneElement& e, const Eigen::Matrix<double, 3, 2>& f);
 
 class StvkMembrane : public Energy {
  public:
@@ -39,6 +45,10 @@ class StvkMembrane : public Energy {
   void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const override;
   void addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const override;
   void addCouplings(std::vector<std::pair<int, int>>& pairs) const override;
+  bool addRecordedStepStartGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override {
+    return m_recorded.addTo(x, m_scale, g);
+  }
+  void setRecordStepStartGradient(bool record) override { m_recorded.enabled = record; }
 
   // Exact Hessian (for tests) instead of the default projected one: material term J^T C J plus the geometric
   // term with the stress S clamped to its positive part, which is SPD.
@@ -47,6 +57,9 @@ class StvkMembrane : public Energy {
   Eigen::Matrix<double, 9, 9> elementHessian(const MembraneElement& e, const Eigen::VectorXd& x) const;
   // The element Hessian and (into ge) the element gradient, sharing F and the strain Jacobian.
   Eigen::Matrix<double, 9, 9> elementDerivatives(const MembraneElement& e, const Eigen::VectorXd& x,
+                                                 Eigen::Matrix<double, 9, 1>* ge) const;
+  // The same at the element's deformation gradient f.
+  Eigen::Matrix<double, 9, 9> elementDerivatives(const MembraneElement& e, const Eigen::Matrix<double, 3, 2>& f,
                                                  Eigen::Matrix<double, 9, 1>* ge) const;
   const std::vector<MembraneElement>& elements() const { return m_elements; }
   // The stretch dissipation on the same triangles (same order), folded into this energy's Hessian passes when
@@ -60,6 +73,7 @@ class StvkMembrane : public Energy {
   double m_scale = 1.0;
   bool m_exactHessian = false;
   AssemblyOptions m_options;
+  mutable RecordedGradient m_recorded;  // elastic gradient of the last addGradient pass (without the dissipation)
 };
 
 }  // namespace drape::newton
