@@ -10,10 +10,11 @@
 // --motion-start moves the start (and end, keeping the rate) of every moving pin to S seconds, so that a short
 // window shows the twist; --repeat R runs the whole list of configurations R times, interleaved, and keeps the
 // fastest run of each (the loaded-machine noise only ever adds time); --memory prints the peak resident memory (VmHWM) per 100k DOFs, run it alone.
-// --reuse-steps N: the Hessian reuse limit of feature "reuse" (default 4). (solver.cg.forcing trades accuracy, so
+// --reuse-steps N: the Hessian reuse limit of feature "reuse" (default 4); --coarse-aggregate N: the vertices per
+// aggregate of feature "coarse" (two-level PCG, default 16). (solver.cg.forcing trades accuracy, so
 // it is no feature here: measure it with --set.)
 // Configurations: a base "on" (every speed-up on) or "off" (all off) followed by "+X" / "-X" modifiers, e.g.
-// "off+bending+map", "on-reorder". X in {bending, map, parallel, fold, reorder, fused, warm, mixed, reuse}. "all" = off,
+// "off+bending+map", "on-reorder". X in {bending, map, parallel, fold, reorder, fused, warm, mixed, reuse, coarse}. "all" = off,
 // on and every on-X; "table7" = the cumulative sequence off, off+bending, ... , on (newton-drape-pizana Table 7).
 #include <sys/resource.h>
 
@@ -39,6 +40,8 @@ using Clock = std::chrono::steady_clock;
 
 // Steps an elastic Hessian may be reused with feature "reuse" on (solver.newton.hessian_reuse_steps; --reuse-steps).
 int g_reuseSteps = 4;
+// Vertices per coarse aggregate with feature "coarse" on (solver.cg.coarse_aggregate; --coarse-aggregate).
+int g_coarseAggregate = 16;
 
 // The speed-up switches: name, setting key (scene mode), NewtonSettings setter (cloth mode); a switch that is not
 // boolean gives its scene value on / off.
@@ -61,6 +64,9 @@ const std::vector<Feature>& features() {
       {"reuse", "solver.newton.hessian_reuse_steps",
        [](NewtonSettings& s, bool on) { s.hessianReuseSteps = on ? g_reuseSteps : 0; },
        [](bool on) { return std::to_string(on ? g_reuseSteps : 0); }},
+      {"coarse", "solver.cg.coarse_aggregate",
+       [](NewtonSettings& s, bool on) { s.coarseAggregate = on ? g_coarseAggregate : 0; },
+       [](bool on) { return std::to_string(on ? g_coarseAggregate : 0); }},
   };
   return list;
 }
@@ -319,6 +325,8 @@ int main(int argc, char** argv) try {
       configs = expandConfigs(value);
     } else if (key == "--reuse-steps") {
       g_reuseSteps = std::max(1, std::atoi(value.c_str()));
+    } else if (key == "--coarse-aggregate") {
+      g_coarseAggregate = std::max(2, std::atoi(value.c_str()));
     } else if (key == "--repeat") {
       repeat = std::max(1, std::atoi(value.c_str()));
     } else if (key == "--scene") {

@@ -576,6 +576,7 @@ TEST(NewtonSpeedup, SolverSwitchesReachTheSameState) {
   // Reference: every new switch off, tight PCG tolerance; and the same at the default tau_cg = 1e-2.
   auto allOff = [](NewtonSettings& s) {
     s.reorderDofs = s.linear.warmStart = s.linear.fusedKernels = s.linear.mixedPrecision = false;
+    s.coarseAggregate = 0;
   };
   const Eigen::VectorXd ref = run([&](NewtonSettings& s) {
     allOff(s);
@@ -601,11 +602,13 @@ TEST(NewtonSpeedup, SolverSwitchesReachTheSameState) {
       EXPECT_LT((x - base).norm(), 1e-7 * moved) << "reorder " << (mask & 1) << " fused " << (mask & 2) << " tol " << tol;
     }
   }
-  // Warm start and mixed precision change the PCG iterates within its tolerance: each alone, all together and the
-  // defaults end no further from the tight reference than the all-off run at the same tolerance (+50 %).
+  // Warm start, mixed precision and the two-level preconditioner change the PCG iterates within its tolerance:
+  // each alone, all together and the defaults end no further from the tight reference than the all-off run at the
+  // same tolerance (+50 %).
   std::vector<std::pair<std::string, std::function<void(NewtonSettings&)>>> configs = {
       {"warm", [&](NewtonSettings& s) { allOff(s), s.linear.warmStart = true; }},
       {"mixed", [&](NewtonSettings& s) { allOff(s), s.linear.mixedPrecision = true; }},
+      {"coarse", [&](NewtonSettings& s) { allOff(s), s.linear.fusedKernels = true, s.coarseAggregate = 16; }},
       {"all on", [](NewtonSettings& s) { s.linear.mixedPrecision = true; }},
       {"defaults", [](NewtonSettings&) {}},
   };

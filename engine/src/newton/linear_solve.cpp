@@ -1,5 +1,7 @@
 #include "drape/newton/linear_solve.h"
 
+#include "drape/newton/coarse_space.h"
+
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
@@ -170,13 +172,36 @@ struct StorageMatrix {
   }
 };
 
-// PCG on storage-ordered vectors; x in/out (initial guess when warm). Returns the iteration count.
+// The coarse correction of the two-level preconditioner on storage-ordered vectors: e = P (P^T A P)^-1 P^T r,
+// kept per aggregate (3m) and added to the block-Jacobi z where z is used.
+template <typename S>
+struct CoarseCorrection {
+  const CoarseSpace* space = nullptr;
+  Eigen::VectorXd rc, ec;
+  Eigen::Matrix<S, Eigen::Dynamic, 1> e;  // ec in S
+
+  explicit CoarseCorrection(const CoarseSpace* coarse) : space(coarse && coarse->ready() ? coarse : nullptr) {}
+  // Computes the correction for residual r (storage order); returns r . P ec (the correction's share of r . z).
+  double update(const Eigen::Matrix<S, Eigen::Dynamic, 1>& r, int n) {
+    const std::vector<int>& agg = space->aggregateOfRow();
+    rc.setZero(3 * space->numAggregates());
+    for (int i = 0; i < n; ++i) rc.segment<3>(3 * agg[i]) += r.template segment<3>(3 * i).template cast<double>();
+    space->solve(rc, ec);
+    e = ec.cast<S>();
+    return rc.dot(ec);
+  }
+  Eigen::Matrix<S, 3, 1> at(int row) const { return e.template segment<3>(3 * space->aggregateOfRow()[row]); }
+};
+
+// PCG on storage-ordered vectors; x in/out (initial guess when warm). Returns the iteration count. coarse: the
+// two-level correction added to z = inv r (nullptr or not ready: one level).
 template <typename S>
 int fusedPcg(const StorageMatrix<S>& a, const std::vector<Eigen::Matrix<S, 3, 3>>& inv,
              const Eigen::Matrix<S, Eigen::Dynamic, 1>& b, Eigen::Matrix<S, Eigen::Dynamic, 1>& x, double tol,
-             int maxIt, bool warm) {
+             int maxIt, bool warm, const CoarseSpace* coarse) {
   using Vec = Eigen::Matrix<S, Eigen::Dynamic, 1>;
   const int n = a.n;
+  CoarseCorrection<S> cc(coarse);
   Vec r(b.size()), z(b.size()), p(b.size()), ap(b.size());
   const double bNorm2 = reduceRows<double>(n, [&](int r0, int r1) {
     return static_cast<double>(b.segment(3 * r0, 3 * (r1 - r0)).squaredNorm());
@@ -201,6 +226,12 @@ int fusedPcg(const StorageMatrix<S>& a, const std::vector<Eigen::Matrix<S, 3, 3>
   });
   double rz = sums(0);
   if (sums(1) <= stop2) return 0;
+  if (cc.space) {
+    rz += cc.update(r, n);
+    forRows(n, [&](int r0, int r1) {
+      for (int i = r0; i < r1; ++i) p.template segment<3>(3 * i) += cc.at(i);
+    });
+  }
   int it = 0;
   while (it < maxIt) {
     const double pap = a.multiplyDot(p, ap);
@@ -219,13 +250,22 @@ int fusedPcg(const StorageMatrix<S>& a, const std::vector<Eigen::Matrix<S, 3, 3>
       }
       return acc;
     });
-    const double rzNew = sums(0);
+    double rzNew = sums(0);
     ++it;
     if (sums(1) <= stop2) break;
-    const S beta = static_cast<S>(rzNew / rz);
-    forRows(n, [&](int r0, int r1) {
-      for (int i = 3 * r0; i < 3 * r1; ++i) p[i] = z[i] + beta * p[i];
-    });
+    if (cc.space) {
+      rzNew += cc.update(r, n);
+      const S beta = static_cast<S>(rzNew / rz);
+      forRows(n, [&](int r0, int r1) {
+        for (int i = r0; i < r1; ++i)
+          p.template segment<3>(3 * i) = z.template segment<3>(3 * i) + cc.at(i) + beta * p.template segment<3>(3 * i);
+      });
+    } else {
+      const S beta = static_cast<S>(rzNew / rz);
+      forRows(n, [&](int r0, int r1) {
+        for (int i = 3 * r0; i < 3 * r1; ++i) p[i] = z[i] + beta * p[i];
+      });
+    }
     rz = rzNew;
   }
   return it;
@@ -247,7 +287,7 @@ LinearSolveResult fusedSolve(const BlockMatrix& a, const Eigen::VectorXd& b, Eig
   StorageMatrix<S> m(a);
   Vec bs = bi.cast<S>(), xs;
   if (warm) xs = xi.cast<S>();
-  result.iterations = fusedPcg<S>(m, inv, bs, xs, options.tolerance, options.maxIterations, warm);
+  result.iterations = fusedPcg<S>(m, inv, bs, xs, options.tolerance, options.maxIterations, warm, options.coarse);
   xi = xs.template cast<double>();
   if (!xi.allFinite()) return result;
   // True residual in double precision.

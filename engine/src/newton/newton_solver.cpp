@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "drape/newton/body_forces.h"
+#include "drape/newton/coarse_space.h"
 #include "drape/newton/hinge_bending.h"
 #include "drape/newton/springs.h"
 #include "drape/newton/strain_rate_damping.h"
@@ -87,6 +88,8 @@ NewtonSolver::NewtonSolver(ClothModel model, NewtonSettings settings, std::vecto
   std::vector<std::pair<int, int>> couplings;
   for (const auto& e : m_energies) e->addCouplings(couplings);
   m_matrix.build(n, couplings, m_settings.reorderDofs);
+  if (m_settings.coarseAggregate > 1 && m_settings.linear.fusedKernels)
+    m_coarse = std::make_unique<CoarseSpace>(m_matrix, m_settings.coarseAggregate);
   m_h = m_settings.relaxation ? m_settings.hMax / m_settings.relaxationStepDivisor : m_settings.hMax;
 }
 
@@ -169,6 +172,7 @@ bool NewtonSolver::assembleFirstIteration(const Eigen::VectorXd& x, double h, bo
       if (!recorded(k)) m_energies[k]->addGradient(x, g);
     ++m_elasticHessianAge;
   } else {
+    m_coarseStale = true;
     m_matrix.setZero();
     for (size_t k = 0; k < m_elasticCount; ++k) {
       if (recorded(k))
@@ -183,6 +187,7 @@ bool NewtonSolver::assembleFirstIteration(const Eigen::VectorXd& x, double h, bo
 }
 
 void NewtonSolver::assembleHessian(const Eigen::VectorXd& x, double h) {
+  m_coarseStale = true;
   m_matrix.setZero();
   for (size_t k = 0; k < m_elasticCount; ++k) m_energies[k]->addHessian(x, m_matrix);
   saveElasticHessian(h);
@@ -222,6 +227,15 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
     t0 = Clock::now();
     if (it > 0) assembleHessian(x, h);
     for (int i = 0; i < m_mass.size(); ++i) m_matrix.diagonalBlock(i).diagonal().array() += m_mass(i) * invH2;
+    // Contact, friction and the drag spring add fresh blocks in every iteration; without them the coarse factor
+    // lives as long as the elastic Hessian (hessianReuseSteps).
+    const bool useCoarse = m_coarse && m_useCoarse;
+    const bool freshTerms = m_energies.size() > m_elasticCount || !m_matrix.dynamicEntries().empty();
+    if (useCoarse && (m_coarseStale || m_coarseH != h || freshTerms)) {
+      m_coarse->factorize(m_matrix);
+      m_coarseStale = false;
+      m_coarseH = h;
+    }
     report.hessianSeconds += secondsSince(t0);
     t0 = Clock::now();
     // PCG initial guess (used when linear.warmStart): the first Newton system of a step is close to the last
@@ -231,12 +245,20 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
     else
       dv.resize(0);
     LinearSolveOptions linear = m_settings.linear;
+    linear.coarse = useCoarse ? m_coarse.get() : nullptr;
     if (m_settings.cgForcing > 0.0 && rn > 0.0)
       linear.tolerance = std::max(linear.tolerance, std::min(0.5, m_settings.cgForcing * m_settings.tauNewton / rn));
     LinearSolveResult ls = solveLinear(m_matrix, b * invH2, dv, linear);
     report.linearSolveSeconds += secondsSince(t0);
     ++report.newtonIterations;
     report.cgIterations += ls.iterations;
+    report.coarseSolves += linear.coarse != nullptr;
+    // The coarse level pays for itself only on solves that need many PCG iterations (stiff fabric, fine mesh).
+    const int from = m_settings.coarseFromIterations;
+    if (!useCoarse && ls.iterations >= from)
+      m_useCoarse = true;
+    else if (useCoarse && ls.iterations < from / 4)
+      m_useCoarse = false;
     if (!ls.ok) return NewtonStatus::Diverged;
     // Backtracking line search halving the step until the residual decreases (Algorithm 1, lines 15-27).
     bool accepted = false;

@@ -97,6 +97,11 @@ const std::vector<SettingSpec>& Settings::specs() {
        "inexact Newton: PCG stops once its residual is this fraction of tau_n (relative tolerance at most 0.5, at "
        "least solver.cg.tolerance); 0: always solver.cg.tolerance", 0, 1},
       {"solver.cg.warm_start", T::Boolean, "true", "", "PCG starts from the last step's velocity change"},
+      {"solver.cg.coarse_aggregate", T::Integer, "16", "",
+       "two-level PCG: vertices per coarse aggregate (fused PCG; 0: block-Jacobi alone)", 0, 100000},
+      {"solver.cg.coarse_from_iterations", T::Integer, "30", "",
+       "two-level PCG from a solve needing this many block-Jacobi iterations (until below a quarter; 0: always)", 0,
+       1e6},
       {"solver.cg.fused_kernels", T::Boolean, "true", "",
        "fused parallel block PCG (one pass per phase, deterministic TBB reductions); false: plain Eigen PCG"},
       {"solver.newton.reorder_dofs", T::Boolean, "true", "", "Reverse Cuthill-McKee order of the matrix rows (6.4)"},

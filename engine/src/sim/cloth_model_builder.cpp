@@ -77,6 +77,8 @@ newton::NewtonSettings newtonSettingsFrom(const Settings& s) {
   n.linear.mixedPrecision = s.flag("solver.cg.mixed_precision");
   n.linear.warmStart = s.flag("solver.cg.warm_start");
   n.linear.fusedKernels = s.flag("solver.cg.fused_kernels");
+  n.coarseAggregate = static_cast<int>(s.integer("solver.cg.coarse_aggregate"));
+  n.coarseFromIterations = static_cast<int>(s.integer("solver.cg.coarse_from_iterations"));
   n.reorderDofs = s.flag("solver.newton.reorder_dofs");
   n.closedFormBending = s.flag("solver.newton.closed_form_bending");
   n.cachedBlockMap = s.flag("solver.newton.block_map");

@@ -6,6 +6,8 @@
 
 namespace drape::newton {
 
+class CoarseSpace;
+
 enum class Preconditioner { None, Diagonal, BlockJacobi, IncompleteCholesky };
 enum class LinearSolverKind { Pcg, Cholmod };
 
@@ -23,6 +25,10 @@ struct LinearSolveOptions {
   // deterministic reductions; float matrix copy for mixedPrecision. false = the plain Eigen-vector PCG.
   // Preconditioners None, Diagonal and BlockJacobi only (IncompleteCholesky always takes the plain path).
   bool fusedKernels = true;
+  // Two-level preconditioner (coarse_space.h, factorised for this matrix by the caller): its coarse correction
+  // is added to the Diagonal or BlockJacobi preconditioner of the fused PCG; ignored by the other paths. nullptr:
+  // one level.
+  const CoarseSpace* coarse = nullptr;
 };
 
 struct LinearSolveResult {

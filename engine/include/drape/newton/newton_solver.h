@@ -64,9 +64,18 @@ struct NewtonSettings {
   // velocities, so its first gradient of the membrane and the bending is the one the previous step's accepted
   // line-search pass recorded (energy.h, addRecordedStepStartGradient).
   bool stepStartGradients = true;
+  // Two-level PCG (coarse_space.h; not in the paper): vertices per coarse aggregate, 0 = block-Jacobi alone (the
+  // paper). The coarse matrix is refactorised for every solve in scenes with contact, friction or a drag spring
+  // (fresh blocks in every iteration), otherwise only when the elastic Hessian is assembled afresh or h changes.
+  int coarseAggregate = 16;
+  // The coarse level is used from the solve after one that needed at least this many PCG iterations with
+  // block-Jacobi alone, until a two-level solve needs fewer than a quarter of it (0: always). On a soft garment
+  // with contact (the default scene: ~20 iterations per step) its cost per solve outweighs the iterations saved.
+  int coarseFromIterations = 30;
 };
 
 class PinSprings;
+class CoarseSpace;
 
 enum class NewtonStatus { Converged, MaxIterations, Diverged, Cancelled };
 const char* toString(NewtonStatus status);
@@ -91,6 +100,7 @@ struct NewtonStepReport {
   double linearSolveSeconds = 0.0;
   bool hessianReused = false;  // the first iteration solved with a reused elastic Hessian (hessianReuseSteps)
   int recordedGradients = 0;   // energies whose first gradient came from the last step's pass (stepStartGradients)
+  int coarseSolves = 0;        // linear solves with the two-level preconditioner (coarseAggregate)
 };
 
 class NewtonSolver {
@@ -164,6 +174,12 @@ class NewtonSolver {
   // Velocity change of the last accepted step (3|V|, m/s) and its h (s): the PCG initial guess of the next step.
   Eigen::VectorXd m_lastDv;
   double m_lastDvH = 0.0;
+  // Two-level PCG: the coarse space (settings.coarseAggregate > 0), and whether m_matrix's static values changed
+  // since its last factorisation (fresh elastic assembly) and for which h it was factorised.
+  std::unique_ptr<CoarseSpace> m_coarse;
+  bool m_coarseStale = true;
+  bool m_useCoarse = false;  // coarseFromIterations: the last solves needed many iterations
+  double m_coarseH = 0.0;
   std::atomic<bool> m_cancel{false};
 };
 
