@@ -175,4 +175,5 @@ TEST(CoarseSpace, SolverEngagesTheCoarseLevelOnlyWhereSolvesAreLong) {
   EXPECT_EQ(coarseSolves(1e5, 0, 30), 0) << "switched off";
   EXPECT_EQ(coarseSolves(10.0, 16, 30), 0) << "soft: short solves";
   EXPECT_EQ(coarseSolves(1e5, 16, 100000), 0) << "threshold never reached";
+  EXPECT_GE(coarseSolves(10.0, 16, 0), 20) << "threshold 0: every solve, from the first";
 }

@@ -90,6 +90,7 @@ NewtonSolver::NewtonSolver(ClothModel model, NewtonSettings settings, std::vecto
   m_matrix.build(n, couplings, m_settings.reorderDofs);
   if (m_settings.coarseAggregate > 1 && m_settings.linear.fusedKernels)
     m_coarse = std::make_unique<CoarseSpace>(m_matrix, m_settings.coarseAggregate);
+  m_useCoarse = m_settings.coarseFromIterations <= 0;
   m_h = m_settings.relaxation ? m_settings.hMax / m_settings.relaxationStepDivisor : m_settings.hMax;
 }
 
