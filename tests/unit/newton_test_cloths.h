@@ -37,6 +37,13 @@ inline ClothModel gridCloth(int n, double d, double noise, unsigned seed) {
   return m;
 }
 
+// 1 m x 1 m gridCloth of n x n vertices hanging from its two top corners.
+inline ClothModel hangingGridCloth(int n, double noise, unsigned seed) {
+  ClothModel m = gridCloth(n, 1.0 / (n - 1), noise, seed);
+  m.pinned = {n * (n - 1), n * n - 1};
+  return m;
+}
+
 // Vertical panel of nx x ny vertices, width x height metres, bottom-left corner at `origin`, appended to m; rest
 // coords from 0.
 inline void appendGridPanel(ClothModel& m, int nx, int ny, double width, double height, const Eigen::Vector3d& origin) {

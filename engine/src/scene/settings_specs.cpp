@@ -98,7 +98,7 @@ const std::vector<SettingSpec>& Settings::specs() {
        "least solver.cg.tolerance); 0: always solver.cg.tolerance", 0, 1},
       {"solver.cg.warm_start", T::Boolean, "true", "", "PCG starts from the last step's velocity change"},
       {"solver.cg.coarse_aggregate", T::Integer, "16", "",
-       "two-level PCG: vertices per coarse aggregate (fused PCG; 0: block-Jacobi alone)", 0, 100000},
+       "two-level PCG: vertices per coarse aggregate (fused PCG; 0 or 1: block-Jacobi alone)", 0, 100000},
       {"solver.cg.coarse_from_iterations", T::Integer, "30", "",
        "two-level PCG from a solve needing this many block-Jacobi iterations (until below a quarter; 0: always)", 0,
        1e6},
