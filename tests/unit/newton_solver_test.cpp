@@ -185,28 +185,47 @@ TEST(NewtonSolver, TimeSplittingRecoversFromForcedFailure) {
   EXPECT_TRUE(solver.positions().allFinite());
 }
 
+// Both relaxation step rules: "hold" keeps h_max / 16 for the whole 0.1 s window; "grow" (the default, the paper's
+// initial time step) starts there and grows back by the time-splitting rule, still zeroing velocities and ramping
+// the stiffness until 0.1 s.
 TEST(NewtonSolver, RelaxationSettlesPreStretchedCloth) {
-  ClothModel m = hangingCloth(9, 0.3);
-  m.pinned.clear();
-  m.gravity.setZero();
-  m.positions *= 2.0;  // 2x pre-stretch in both directions
-  NewtonSolver solver(m, NewtonSettings{});
-  EXPECT_NEAR(maxEdgeStretch(m, solver.positions()), 2.0, 1e-12);
-  int relaxingSteps = 0;
-  while (solver.time() < 0.2) {
-    NewtonStepReport r = solver.step();
-    ASSERT_NE(r.status, NewtonStatus::Diverged);
-    ASSERT_TRUE(solver.positions().allFinite() && solver.velocities().allFinite());
-    if (r.relaxing) {
-      ++relaxingSteps;
-      EXPECT_LE(r.h, 1e-3 / 16 + 1e-18);
-      EXPECT_EQ(solver.velocities().norm(), 0.0);
+  for (bool hold : {true, false}) {
+    SCOPED_TRACE(hold ? "hold" : "grow");
+    ClothModel m = hangingCloth(9, 0.3);
+    m.pinned.clear();
+    m.gravity.setZero();
+    m.positions *= 2.0;  // 2x pre-stretch in both directions
+    NewtonSettings s;
+    s.relaxationHoldStep = hold;
+    NewtonSolver solver(m, s);
+    EXPECT_NEAR(maxEdgeStretch(m, solver.positions()), 2.0, 1e-12);
+    int relaxingSteps = 0;
+    double lastH = 0.0, relaxedTime = 0.0;
+    while (solver.time() < 0.2) {
+      NewtonStepReport r = solver.step();
+      ASSERT_NE(r.status, NewtonStatus::Diverged);
+      ASSERT_TRUE(solver.positions().allFinite() && solver.velocities().allFinite());
+      if (r.relaxing) {
+        if (relaxingSteps == 0) EXPECT_EQ(r.h, s.hMax / 16);
+        ++relaxingSteps;
+        relaxedTime = r.time;
+        if (hold) EXPECT_LE(r.h, s.hMax / 16 + 1e-18);
+        if (!hold && r.splits == 0) EXPECT_GE(r.h, lastH);  // grows back unless a step had to split
+        EXPECT_EQ(solver.velocities().norm(), 0.0);
+      }
+      lastH = r.h;
     }
+    double stretch = maxEdgeStretch(m, solver.positions());
+    std::printf("%s: relaxing steps %d, max edge stretch after 0.2 s: %.4f\n", hold ? "hold" : "grow",
+                relaxingSteps, stretch);
+    EXPECT_GE(relaxedTime, 0.1 - s.hMax);  // the window lasts 0.1 s in both rules
+    if (hold) EXPECT_GE(relaxingSteps, 1000);  // 0.1 s at h_max / 16
+    if (!hold) {
+      EXPECT_LT(relaxingSteps, 200);  // back at h_max after ~10 growths of 5 steps
+      EXPECT_EQ(lastH, s.hMax);
+    }
+    EXPECT_LT(stretch, 1.05);
   }
-  double stretch = maxEdgeStretch(m, solver.positions());
-  std::printf("relaxing steps %d, max edge stretch after 0.2 s: %.4f\n", relaxingSteps, stretch);
-  EXPECT_GE(relaxingSteps, 1000);  // 0.1 s at h_max / 16
-  EXPECT_LT(stretch, 1.05);
 }
 
 TEST(NewtonSolver, DivergenceKeepsLastGoodStateAndCancelStops) {

@@ -300,7 +300,7 @@ NewtonStepReport NewtonSolver::step() {
   const NewtonSettings& s = m_settings;
   const bool relaxing = s.relaxation && m_time < s.relaxationTime;
   report.relaxing = relaxing;
-  const double hCap = relaxing ? s.hMax / s.relaxationStepDivisor : s.hMax;
+  const double hCap = relaxing && s.relaxationHoldStep ? s.hMax / s.relaxationStepDivisor : s.hMax;
   m_h = std::min(m_h, hCap);
   const double scale =
       relaxing ? s.relaxationStartScale + (1.0 - s.relaxationStartScale) * (m_time / s.relaxationTime) : 1.0;

@@ -69,6 +69,7 @@ newton::NewtonSettings newtonSettingsFrom(const Settings& s) {
   n.omega = s.number("solver.newton.omega");
   n.growAfterSteps = s.integer("solver.newton.grow_after_steps");
   n.relaxation = s.flag("solver.newton.relaxation");
+  n.relaxationHoldStep = s.text("solver.newton.relaxation_step") == "hold";
   n.earlyStopThreshold = s.number("solver.newton.early_stop_threshold");
   n.earlyStopWindow = s.number("solver.newton.early_stop_window");
   n.linear.tolerance = s.number("solver.cg.tolerance");

@@ -33,6 +33,9 @@ struct NewtonSettings {
   bool relaxation = true;         // initial relaxation (5.2)
   double relaxationTime = 0.1;    // s
   double relaxationStepDivisor = 16.0;  // h = hMax / 16 during relaxation
+  // true: h stays at hMax / relaxationStepDivisor for the whole window; false: the window starts at that step and
+  // h grows back by the usual rule (I_s good steps, 1 / omega), the paper's "initial time step" (5.2).
+  bool relaxationHoldStep = false;
   double relaxationStartScale = 1e-2;   // stiffness ramp start
   double earlyStopThreshold = 1e-8;     // J, 99th percentile of 0.5 m |v|^2
   double earlyStopWindow = 0.1;         // s
