@@ -269,6 +269,24 @@ TEST(NewtonSpeedup, CompactLaggedDissipationsMatchTheirDefinition) {
   Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
   stretch.addGradient(x, g);
   EXPECT_LT((g - expectedGradient).norm(), 1e-12 * expectedGradient.norm());
+  // F_n taken over from the membrane's gradient pass: only when that pass ran at x_n, and only once.
+  MembraneDissipation stretchReused(membrane.elements(), betaS);
+  stretchReused.setStartSource(&membrane);
+  membrane.setRecordDeformationGradients(true);
+  membrane.beginStep(ctx);
+  Eigen::VectorXd scratch = Eigen::VectorXd::Zero(x.size());
+  membrane.addGradient(x, scratch);  // records at x, not at x_n
+  std::vector<Eigen::Matrix<double, 3, 2>> taken;
+  EXPECT_FALSE(membrane.takeRecordedDeformationGradients(xn, taken));
+  stretchReused.beginStep(ctx);
+  EXPECT_NEAR(stretchReused.value(x), expected, 1e-12 * expected) << "recorded at another x: recomputed";
+  membrane.addGradient(xn, scratch);  // the accepted state of a step
+  stretchReused.beginStep(ctx);
+  EXPECT_FALSE(membrane.takeRecordedDeformationGradients(xn, taken)) << "taken over by the dissipation";
+  EXPECT_NEAR(stretchReused.value(x), expected, 1e-12 * expected) << "recorded at x_n";
+  Eigen::VectorXd gReusedStretch = Eigen::VectorXd::Zero(x.size());
+  stretchReused.addGradient(x, gReusedStretch);
+  EXPECT_LT((gReusedStretch - expectedGradient).norm(), 1e-12 * expectedGradient.norm());
 
   // Bending: sum over hinges of 0.5 c (grad phi(x_n) . d)^2, with the gradients computed (no recording yet,
   // then recorded at another x) and recorded at x_n.
@@ -285,13 +303,14 @@ TEST(NewtonSpeedup, CompactLaggedDissipationsMatchTheirDefinition) {
   EXPECT_NEAR(computed.value(x), expectedBend, 1e-10 * expectedBend);
   Eigen::VectorXd unused = Eigen::VectorXd::Zero(x.size());
   bending.addGradient(x, unused);  // records at x, not at x_n
-  EXPECT_EQ(bending.recordedGradientsAt(xn, true), nullptr);
+  EXPECT_FALSE(bending.hasRecordedGradientsAt(xn, true));
   reused.beginStep(ctx);
   EXPECT_NEAR(reused.value(x), expectedBend, 1e-10 * expectedBend) << "recorded at another x: recomputed";
   bending.addGradient(xn, unused);  // the accepted state of a step
-  ASSERT_NE(bending.recordedGradientsAt(xn, true), nullptr);
-  EXPECT_EQ(bending.recordedGradientsAt(xn, false), nullptr) << "recorded in closed form";
+  ASSERT_TRUE(bending.hasRecordedGradientsAt(xn, true));
+  EXPECT_FALSE(bending.hasRecordedGradientsAt(xn, false)) << "recorded in closed form";
   reused.beginStep(ctx);
+  EXPECT_FALSE(bending.hasRecordedGradientsAt(xn, true)) << "taken over by the dissipation";
   EXPECT_NEAR(reused.value(x), expectedBend, 1e-10 * expectedBend) << "recorded at x_n";
   Eigen::VectorXd gComputed = Eigen::VectorXd::Zero(x.size()), gReused = Eigen::VectorXd::Zero(x.size());
   computed.addGradient(x, gComputed);

@@ -242,9 +242,25 @@ double HingeBending::value(const Eigen::VectorXd& x) const {
   return m_scale * sum;
 }
 
-const std::vector<Grad12>* HingeBending::recordedGradientsAt(const Eigen::VectorXd& x, bool closedForm) const {
-  if (m_recordedClosedForm != closedForm || !samePositions(m_recordedAt, x)) return nullptr;
-  return &m_recorded;
+double zeroSumOffset(const Hinge& hinge, const Eigen::VectorXd& x, Grad12& g) {
+  g.segment<3>(0) = -(g.segment<3>(3) + g.segment<3>(6) + g.segment<3>(9));
+  const Eigen::Vector3d x0 = x.segment<3>(3 * hinge.v[0]);
+  double sum = 0.0;
+  for (int k = 1; k < 4; ++k) sum += g.segment<3>(3 * k).dot(x.segment<3>(3 * hinge.v[k]) - x0);
+  return sum;
+}
+
+bool HingeBending::hasRecordedGradientsAt(const Eigen::VectorXd& x, bool closedForm) const {
+  return m_recordedClosedForm == closedForm && samePositions(m_recordedAt, x) && m_recorded.size() == m_hinges.size();
+}
+
+bool HingeBending::takeRecordedGradients(const Eigen::VectorXd& x, bool closedForm, std::vector<Grad12>& gradients,
+                                         std::vector<double>& offsets) const {
+  if (!hasRecordedGradientsAt(x, closedForm)) return false;
+  gradients.swap(m_recorded);
+  offsets.swap(m_recordedOffsets);
+  m_recordedAt.resize(0);
+  return true;
 }
 
 void HingeBending::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
@@ -252,6 +268,7 @@ void HingeBending::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) con
   const BendingDissipation* fold = m_options.foldDissipation ? m_dissipation : nullptr;
   if (m_record) {
     m_recorded.resize(m_hinges.size());
+    m_recordedOffsets.resize(m_hinges.size());
     m_recordedAt.resize(0);  // invalid until the pass is complete
   }
   const bool recordGradient = m_recordedGradient.enabled;
@@ -261,7 +278,11 @@ void HingeBending::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) con
       const Hinge& h = m_hinges[ids[i]];
       double phi = 0.0;
       const Grad12 grad = hingeBendGradient(h, x, closedForm, phi);
-      if (m_record) m_recorded[ids[i]] = grad;
+      if (m_record) {
+        Grad12& r = m_recorded[ids[i]];
+        r = grad;
+        m_recordedOffsets[ids[i]] = zeroSumOffset(h, x, r);
+      }
       Grad12 ge = (m_scale * h.stiffness * phi) * grad;
       if (recordGradient) m_stencils.addGradient(ids[i], ge, m_recordedGradient.gradient);
       if (fold) ge += fold->stencilGradient(ids[i], x);

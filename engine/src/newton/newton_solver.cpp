@@ -71,6 +71,8 @@ NewtonSolver::NewtonSolver(ClothModel model, NewtonSettings settings, std::vecto
   if (m_settings.betaStretch > 0.0) {
     auto stretch = std::make_unique<MembraneDissipation>(elements, m_settings.betaStretch);
     membraneEnergy->foldDissipation(stretch.get());
+    membraneEnergy->setRecordDeformationGradients(true);
+    stretch->setStartSource(membraneEnergy);
     stretch->setFolded(true);
     m_energies.push_back(std::move(stretch));
   }

@@ -34,17 +34,17 @@ MembraneDissipation::MembraneDissipation(std::vector<MembraneElement> elements, 
   for (const auto& e : m_elements) stencils.push_back(e.v);
   m_stencils = StencilSet<3>(std::move(stencils));
   m_startF.resize(m_elements.size());
-  m_weights.assign(m_elements.size(), Eigen::Vector3d::Zero());
+  for (const auto& e : m_elements) m_stiffness.push_back(e.area * Eigen::Vector3d(e.kWarp, e.kWeft, 2.0 * e.kShear));
 }
 
 void MembraneDissipation::beginStep(const StepContext& ctx) {
   beginLagged(ctx);
-  const double factor = m_beta * ctx.stiffnessScale / ctx.h;
-  forRange(static_cast<int>(m_elements.size()), m_options.parallel, [&](int s) {
-    const MembraneElement& e = m_elements[s];
-    m_startF[s] = deformationGradient(e, *ctx.previousPositions);
-    m_weights[s] = (factor * e.area) * Eigen::Vector3d(e.kWarp, e.kWeft, 2.0 * e.kShear);
-  });
+  m_factor = m_beta * ctx.stiffnessScale / ctx.h;
+  const Eigen::VectorXd& xn = *ctx.previousPositions;
+  if (m_source && m_source->takeRecordedDeformationGradients(xn, m_startF)) return;
+  m_startF.resize(m_elements.size());
+  forRange(static_cast<int>(m_elements.size()), m_options.parallel,
+           [&](int s) { m_startF[s] = deformationGradient(m_elements[s], xn); });
 }
 
 Eigen::Vector3d MembraneDissipation::strainChange(int s, const Eigen::Matrix<double, 3, 2>& f) const {
@@ -58,7 +58,7 @@ double MembraneDissipation::value(const Eigen::VectorXd& x) const {
   double sum = 0.0;
   for (int s = 0; s < m_stencils.size(); ++s) {
     const Eigen::Vector3d rate = strainChange(s, deformationGradient(m_elements[s], x));
-    sum += 0.5 * rate.dot(m_weights[s].cwiseProduct(rate));
+    sum += 0.5 * rate.dot(weights(s).cwiseProduct(rate));
   }
   return sum;
 }
@@ -69,7 +69,7 @@ Eigen::Matrix<double, 9, 1> MembraneDissipation::stencilGradient(int s, const Ei
 
 Eigen::Matrix<double, 9, 1> MembraneDissipation::stencilGradient(int s, const Eigen::Matrix<double, 3, 2>& f) const {
   // J^T sigma without forming J: vertex k gets c_k0 (s0 f0 + s2/2 f1) + c_k1 (s1 f1 + s2/2 f0), f = F_n.
-  const Eigen::Vector3d sigma = m_weights[s].cwiseProduct(strainChange(s, f));
+  const Eigen::Vector3d sigma = weights(s).cwiseProduct(strainChange(s, f));
   const Eigen::Matrix<double, 3, 2>& fn = m_startF[s];
   const Eigen::Vector3d a = sigma(0) * fn.col(0) + 0.5 * sigma(2) * fn.col(1);
   const Eigen::Vector3d b = sigma(1) * fn.col(1) + 0.5 * sigma(2) * fn.col(0);
@@ -88,7 +88,7 @@ void MembraneDissipation::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd&
 
 Eigen::Matrix<double, 9, 9> MembraneDissipation::stencilHessian(int s) const {
   const Eigen::Matrix<double, 3, 9> j = greenStrainJacobian(m_elements[s], m_startF[s]);
-  return j.transpose() * m_weights[s].asDiagonal() * j;
+  return (j.transpose() * weights(s).asDiagonal()).lazyProduct(j);  // coefficient-based: no GEMM for 9 x 3 x 9
 }
 
 Eigen::Matrix<double, 9, 9> MembraneDissipation::stencilDerivatives(int s, const Eigen::Matrix<double, 3, 2>& f,
@@ -123,28 +123,20 @@ BendingDissipation::BendingDissipation(std::vector<Hinge> hinges, double beta)
   m_stencils = StencilSet<4>(std::move(stencils));
   m_gradients.assign(m_hinges.size(), Eigen::Matrix<double, 12, 1>::Zero());
   m_offsets.assign(m_hinges.size(), 0.0);
-  m_coefficients.assign(m_hinges.size(), 0.0);
 }
 
 void BendingDissipation::beginStep(const StepContext& ctx) {
   beginLagged(ctx);
-  const double factor = m_beta * ctx.stiffnessScale / ctx.h;
+  m_factor = m_beta * ctx.stiffnessScale / ctx.h;
   const bool closedForm = m_options.closedFormBending;
   const Eigen::VectorXd& xn = *ctx.previousPositions;
-  const std::vector<Eigen::Matrix<double, 12, 1>>* recorded =
-      m_source ? m_source->recordedGradientsAt(xn, closedForm) : nullptr;
+  if (m_source && m_source->takeRecordedGradients(xn, closedForm, m_gradients, m_offsets)) return;
+  m_gradients.resize(m_hinges.size());
+  m_offsets.resize(m_hinges.size());
   forRange(static_cast<int>(m_hinges.size()), m_options.parallel, [&](int s) {
-    Eigen::Matrix<double, 12, 1>& g = m_gradients[s];
-    if (recorded) {
-      g = (*recorded)[s];
-    } else {
-      double phi = 0.0;
-      g = hingeBendGradient(m_hinges[s], xn, closedForm, phi);
-    }
-    g.segment<3>(0) = -(g.segment<3>(3) + g.segment<3>(6) + g.segment<3>(9));
-    m_offsets[s] = 0.0;
-    m_offsets[s] = angleChange(s, xn);
-    m_coefficients[s] = factor * m_hinges[s].stiffness;
+    double phi = 0.0;
+    m_gradients[s] = hingeBendGradient(m_hinges[s], xn, closedForm, phi);
+    m_offsets[s] = zeroSumOffset(m_hinges[s], xn, m_gradients[s]);
   });
 }
 
@@ -161,13 +153,13 @@ double BendingDissipation::value(const Eigen::VectorXd& x) const {
   double sum = 0.0;
   for (int s = 0; s < m_stencils.size(); ++s) {
     const double rate = angleChange(s, x);
-    sum += 0.5 * m_coefficients[s] * rate * rate;
+    sum += 0.5 * (m_factor * m_hinges[s].stiffness) * rate * rate;
   }
   return sum;
 }
 
 Eigen::Matrix<double, 12, 1> BendingDissipation::stencilGradient(int s, const Eigen::VectorXd& x) const {
-  return (m_coefficients[s] * angleChange(s, x)) * m_gradients[s];
+  return ((m_factor * m_hinges[s].stiffness) * angleChange(s, x)) * m_gradients[s];
 }
 
 void BendingDissipation::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
@@ -180,7 +172,7 @@ void BendingDissipation::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& 
 Eigen::Matrix<double, 12, 12> BendingDissipation::stencilDerivatives(int s, const Eigen::VectorXd& x,
                                                                      Eigen::Matrix<double, 12, 1>* ge) const {
   if (ge) *ge = stencilGradient(s, x);
-  return m_coefficients[s] * (m_gradients[s] * m_gradients[s].transpose());
+  return (m_factor * m_hinges[s].stiffness) * (m_gradients[s] * m_gradients[s].transpose());
 }
 
 void BendingDissipation::addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const { assemble(x, nullptr, h); }

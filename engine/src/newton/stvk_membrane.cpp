@@ -89,11 +89,16 @@ void StvkMembrane::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) con
   const MembraneDissipation* fold = m_options.foldDissipation ? m_dissipation : nullptr;
   const bool record = m_recorded.enabled;
   if (record) m_recorded.begin(x.size());
+  if (m_recordF) {
+    m_recordedF.resize(m_elements.size());
+    m_recordedFAt.resize(0);  // invalid until the pass is complete
+  }
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
     Eigen::Matrix<double, 9, 1> ge;
     for (int i = 0; i < count; ++i) {
       const MembraneElement& e = m_elements[ids[i]];
       const Eigen::Matrix<double, 3, 2> f = deformationGradient(e, x);
+      if (m_recordF) m_recordedF[ids[i]] = f;
       // J^T sigma without forming J (greenStrainJacobian): vertex k gets
       // c_k0 s0 f0 + c_k1 s1 f1 + s2/2 (c_k0 f1 + c_k1 f0).
       const Eigen::Vector3d sigma = (m_scale * e.area) * greenStrain(f).cwiseProduct(voigtWeights(e));
@@ -106,6 +111,15 @@ void StvkMembrane::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) con
     }
   });
   if (record) m_recorded.finish(x, m_scale);
+  if (m_recordF) m_recordedFAt = x;
+}
+
+bool StvkMembrane::takeRecordedDeformationGradients(const Eigen::VectorXd& x,
+                                                    std::vector<Eigen::Matrix<double, 3, 2>>& f) const {
+  if (!samePositions(m_recordedFAt, x) || m_recordedF.size() != m_elements.size()) return false;
+  f.swap(m_recordedF);
+  m_recordedFAt.resize(0);
+  return true;
 }
 
 Eigen::Matrix<double, 9, 9> StvkMembrane::elementHessian(const MembraneElement& e, const Eigen::VectorXd& x) const {
@@ -123,7 +137,7 @@ Eigen::Matrix<double, 9, 9> StvkMembrane::elementDerivatives(const MembraneEleme
   Eigen::Vector3d sigma = greenStrain(f).cwiseProduct(voigtWeights(e));  // dpsi/ds in Voigt form
   Eigen::Matrix<double, 3, 9> j = greenStrainJacobian(e, f);
   if (ge) *ge = (m_scale * e.area) * j.transpose() * sigma;
-  Eigen::Matrix<double, 9, 9> h = j.transpose() * voigtWeights(e).asDiagonal() * j;
+  Eigen::Matrix<double, 9, 9> h = (j.transpose() * voigtWeights(e).asDiagonal()).lazyProduct(j);  // no GEMM
   // Second Piola-Kirchhoff stress as a symmetric 2x2 tensor.
   Eigen::Matrix2d stress;
   stress << sigma(0), 0.5 * sigma(2), 0.5 * sigma(2), sigma(1);

@@ -55,6 +55,10 @@ Eigen::Matrix<double, 12, 1> hingeBendGradient(const Hinge& hinge, const Eigen::
 double hingeBendMeasure(const Hinge& hinge, const Eigen::VectorXd& x);
 // Exact Hessian of phi (12 x 12), by automatic differentiation (exact-Hessian mode and tests).
 Eigen::Matrix<double, 12, 12> hingeBendHessian(const Hinge& hinge, const Eigen::VectorXd& x);
+// Makes a hinge's gradient g (taken at x) sum to zero over its four vertices exactly, g_0 = -(g_1 + g_2 + g_3)
+// (translation invariance), and returns sum_k>0 g_k . (x_k - x_0): then g . (y - x) is the same sum at y minus
+// this one, with no x kept (the bending dissipation's linearised angle change).
+double zeroSumOffset(const Hinge& hinge, const Eigen::VectorXd& x, Eigen::Matrix<double, 12, 1>& g);
 
 class BendingDissipation;
 
@@ -76,16 +80,20 @@ class HingeBending : public Energy {
   // The bending dissipation on the same hinges (same order), folded into this energy's Hessian passes when
   // AssemblyOptions::foldDissipation is on (the solver also calls its setFolded). nullptr: none.
   void foldDissipation(const BendingDissipation* dissipation) { m_dissipation = dissipation; }
-  // Gradient passes (addGradient) record grad(phi) of every hinge and the positions they were taken at, for the
-  // bending dissipation's next beginStep: the line search's last evaluation is the next step's start x_n.
+  // Gradient passes (addGradient) record grad(phi) of every hinge, made zero-sum with its offset (zeroSumOffset),
+  // and the positions they were taken at, for the bending dissipation's next beginStep: the line search's last
+  // evaluation is the next step's start x_n.
   void setRecordAngleGradients(bool record) { m_record = record; }
   bool addRecordedStepStartGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override {
     return m_recordedGradient.addTo(x, m_scale, g);
   }
   void setRecordStepStartGradient(bool record) override { m_recordedGradient.enabled = record; }
-  // The recorded gradients when they were taken at x (bit for bit) in the given form; nullptr otherwise.
-  const std::vector<Eigen::Matrix<double, 12, 1>>* recordedGradientsAt(const Eigen::VectorXd& x,
-                                                                        bool closedForm) const;
+  // Whether the recorded gradients were taken at x (bit for bit) in the given form.
+  bool hasRecordedGradientsAt(const Eigen::VectorXd& x, bool closedForm) const;
+  // When they were: swaps them and their offsets into gradients and offsets (no copy; the record is then
+  // empty) and returns true. Otherwise returns false and leaves both untouched.
+  bool takeRecordedGradients(const Eigen::VectorXd& x, bool closedForm,
+                             std::vector<Eigen::Matrix<double, 12, 1>>& gradients, std::vector<double>& offsets) const;
 
  private:
   const BendingDissipation* m_dissipation = nullptr;
@@ -98,7 +106,8 @@ class HingeBending : public Energy {
   bool m_exactHessian = false;
   AssemblyOptions m_options;
   bool m_record = false;
-  mutable std::vector<Eigen::Matrix<double, 12, 1>> m_recorded;  // grad(phi) per hinge at m_recordedAt
+  mutable std::vector<Eigen::Matrix<double, 12, 1>> m_recorded;  // zero-sum grad(phi) per hinge at m_recordedAt
+  mutable std::vector<double> m_recordedOffsets;                  // zeroSumOffset per hinge
   mutable Eigen::VectorXd m_recordedAt;
   mutable bool m_recordedClosedForm = true;
   mutable RecordedGradient m_recordedGradient;  // elastic gradient of the last addGradient pass (no dissipation)

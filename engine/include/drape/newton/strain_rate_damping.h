@@ -51,6 +51,9 @@ class MembraneDissipation : public LaggedDissipation {
   // Set by the solver when the membrane on the same triangles folds this energy into its passes
   // (AssemblyOptions::foldDissipation): addGradient, addHessian and addGradientAndHessian then add nothing.
   void setFolded(bool folded) { m_folded = folded; }
+  // The membrane on the same triangles, whose recorded deformation gradients beginStep takes over as F_n when
+  // they were taken at x_n (nullptr: always computed).
+  void setStartSource(const StvkMembrane* membrane) { m_source = membrane; }
 
  private:
   bool folded() const { return m_folded && m_options.foldDissipation; }
@@ -58,20 +61,25 @@ class MembraneDissipation : public LaggedDissipation {
   void assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockMatrix& h) const;
   // Strain rate times h, J d, of triangle s at deformation gradient f.
   Eigen::Vector3d strainChange(int s, const Eigen::Matrix<double, 3, 2>& f) const;
+  // Diagonal of W for triangle s.
+  Eigen::Vector3d weights(int s) const { return m_factor * m_stiffness[s]; }
 
   std::vector<MembraneElement> m_elements;
   bool m_folded = false;
   double m_beta;
   StencilSet<3> m_stencils;
+  const StvkMembrane* m_source = nullptr;
   std::vector<Eigen::Matrix<double, 3, 2>> m_startF;  // F_n per triangle, at x_n
-  std::vector<Eigen::Vector3d> m_weights;             // diagonal of W per triangle, N s/m (times 1/h)
+  std::vector<Eigen::Vector3d> m_stiffness;           // A (kWarp, kWeft, 2 kShear) per triangle, N m
+  double m_factor = 0.0;                              // W / that = beta / h (times the stiffness ramp)
 };
 
 // Bending dissipation on the dihedral angle rate of the hinges: per hinge E = 0.5 c (g . d)^2 with g the gradient
 // of the bending measure phi (the angle, faded on collapsing wings; hinge_bending.h) at x_n and c = beta k_e / h.
-// g sums to zero over the hinge's four vertices (translation invariance; made exact in beginStep), so
-// g . d = sum_k>0 g_k . (x_k - x_0) - o with the offset o the same sum at x_n: a pass reads no x_n. g is taken
-// from the hinge bending's last gradient evaluation when that was at x_n (the accepted state of the last step).
+// g sums to zero over the hinge's four vertices (translation invariance; made exact by zeroSumOffset), so
+// g . d = sum_k>0 g_k . (x_k - x_0) - o with the offset o the same sum at x_n: a pass reads no x_n. g and o are
+// taken over (swapped, not copied) from the hinge bending's last gradient evaluation when that was at x_n (the
+// accepted state of the last step): beginStep then makes no pass at all.
 class BendingDissipation : public LaggedDissipation {
  public:
   BendingDissipation(std::vector<Hinge> hinges, double beta);
@@ -106,7 +114,7 @@ class BendingDissipation : public LaggedDissipation {
   StencilSet<4> m_stencils;
   std::vector<Eigen::Matrix<double, 12, 1>> m_gradients;  // bending-measure gradient per hinge, at x_n
   std::vector<double> m_offsets;                          // o per hinge, radians
-  std::vector<double> m_coefficients;                     // c per hinge
+  double m_factor = 0.0;                                  // c / k_e = beta / h (times the stiffness ramp)
 };
 
 }  // namespace drape::newton

@@ -65,6 +65,12 @@ class StvkMembrane : public Energy {
   // The stretch dissipation on the same triangles (same order), folded into this energy's Hessian passes when
   // AssemblyOptions::foldDissipation is on (the solver also calls its setFolded). nullptr: none.
   void foldDissipation(const MembraneDissipation* dissipation) { m_dissipation = dissipation; }
+  // Gradient passes (addGradient) record every triangle's deformation gradient and the positions they were taken
+  // at, for the stretch dissipation's next beginStep (its F_n), as HingeBending::setRecordAngleGradients.
+  void setRecordDeformationGradients(bool record) { m_recordF = record; }
+  // When the recorded deformation gradients were taken at x (bit for bit): swaps them into f (no copy; the
+  // record is then empty) and returns true. Otherwise returns false and leaves f untouched.
+  bool takeRecordedDeformationGradients(const Eigen::VectorXd& x, std::vector<Eigen::Matrix<double, 3, 2>>& f) const;
 
  private:
   const MembraneDissipation* m_dissipation = nullptr;
@@ -74,6 +80,9 @@ class StvkMembrane : public Energy {
   bool m_exactHessian = false;
   AssemblyOptions m_options;
   mutable RecordedGradient m_recorded;  // elastic gradient of the last addGradient pass (without the dissipation)
+  bool m_recordF = false;
+  mutable std::vector<Eigen::Matrix<double, 3, 2>> m_recordedF;  // F per triangle at m_recordedFAt
+  mutable Eigen::VectorXd m_recordedFAt;
 };
 
 }  // namespace drape::newton
