@@ -1,8 +1,7 @@
 #include "drape/newton/linear_solve.h"
 
-#include "drape/newton/coarse_space.h"
-
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_reduce.h>
 
 #include <Eigen/CholmodSupport>
@@ -11,6 +10,8 @@
 #include <cmath>
 #include <type_traits>
 #include <vector>
+
+#include "drape/newton/coarse_space.h"
 
 namespace drape::newton {
 namespace {
@@ -152,7 +153,8 @@ struct StorageMatrix {
       double acc = 0.0;
       for (int r = r0; r < r1; ++r) {
         Eigen::Matrix<S, 3, 1> s = Eigen::Matrix<S, 3, 1>::Zero();
-        for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) s.noalias() += blocks[k] * x.template segment<3>(3 * cols[k]);
+        for (int k = rowStart[r]; k < rowStart[r + 1]; ++k)
+          s.noalias() += blocks[k] * x.template segment<3>(3 * cols[k]);
         y.template segment<3>(3 * r) = s;
         acc += static_cast<double>(x.template segment<3>(3 * r).dot(s));
       }
@@ -183,14 +185,28 @@ struct CoarseCorrection {
   explicit CoarseCorrection(const CoarseSpace* coarse) : space(coarse && coarse->ready() ? coarse : nullptr) {}
   // Computes the correction for residual r (storage order); returns r . P ec (the correction's share of r . z).
   double update(const Eigen::Matrix<S, Eigen::Dynamic, 1>& r, int n) {
-    const std::vector<int>& agg = space->aggregateOfRow();
     rc.setZero(3 * space->numAggregates());
-    for (int i = 0; i < n; ++i) rc.segment<3>(3 * agg[i]) += r.template segment<3>(3 * i).template cast<double>();
+    restrictAdd(r, 1.0, n);
+    return solve();
+  }
+  // The same for r - alpha q, with r the residual of the last update or advance: rc follows r's recurrence, so this
+  // needs only q, and can run while r itself is being updated.
+  double advance(const Eigen::Matrix<S, Eigen::Dynamic, 1>& q, double alpha, int n) {
+    restrictAdd(q, -alpha, n);
+    return solve();
+  }
+  Eigen::Matrix<S, 3, 1> at(int row) const { return e.template segment<3>(3 * space->aggregateOfRow()[row]); }
+
+ private:
+  void restrictAdd(const Eigen::Matrix<S, Eigen::Dynamic, 1>& v, double c, int n) {
+    const std::vector<int>& agg = space->aggregateOfRow();
+    for (int i = 0; i < n; ++i) rc.segment<3>(3 * agg[i]) += c * v.template segment<3>(3 * i).template cast<double>();
+  }
+  double solve() {
     space->solve(rc, ec);
     e = ec.cast<S>();
     return rc.dot(ec);
   }
-  Eigen::Matrix<S, 3, 1> at(int row) const { return e.template segment<3>(3 * space->aggregateOfRow()[row]); }
 };
 
 // PCG on storage-ordered vectors; x in/out (initial guess when warm). Returns the iteration count. coarse: the
@@ -203,9 +219,8 @@ int fusedPcg(const StorageMatrix<S>& a, const std::vector<Eigen::Matrix<S, 3, 3>
   const int n = a.n;
   CoarseCorrection<S> cc(coarse);
   Vec r(b.size()), z(b.size()), p(b.size()), ap(b.size());
-  const double bNorm2 = reduceRows<double>(n, [&](int r0, int r1) {
-    return static_cast<double>(b.segment(3 * r0, 3 * (r1 - r0)).squaredNorm());
-  });
+  const double bNorm2 = reduceRows<double>(
+      n, [&](int r0, int r1) { return static_cast<double>(b.segment(3 * r0, 3 * (r1 - r0)).squaredNorm()); });
   if (bNorm2 == 0.0 || !warm) x.setZero(b.size());
   if (bNorm2 == 0.0) return 0;
   const double stop2 = tol * tol * bNorm2;
@@ -237,24 +252,32 @@ int fusedPcg(const StorageMatrix<S>& a, const std::vector<Eigen::Matrix<S, 3, 3>
     const double pap = a.multiplyDot(p, ap);
     if (!(std::abs(pap) > 0.0) || !std::isfinite(pap)) break;
     const S alpha = static_cast<S>(rz / pap);
-    // x += alpha p, r -= alpha Ap, z = P r; (r.z, r.r) in the same pass.
-    sums = reduceRows<Eigen::Vector2d>(n, [&](int r0, int r1) {
-      Eigen::Vector2d acc = Eigen::Vector2d::Zero();
-      for (int i = r0; i < r1; ++i) {
-        x.template segment<3>(3 * i) += alpha * p.template segment<3>(3 * i);
-        const Eigen::Matrix<S, 3, 1> ri = r.template segment<3>(3 * i) - alpha * ap.template segment<3>(3 * i);
-        const Eigen::Matrix<S, 3, 1> zi = inv[i] * ri;
-        r.template segment<3>(3 * i) = ri;
-        z.template segment<3>(3 * i) = zi;
-        acc += Eigen::Vector2d(static_cast<double>(ri.dot(zi)), static_cast<double>(ri.squaredNorm()));
-      }
-      return acc;
-    });
+    // x += alpha p, r -= alpha Ap, z = P r; (r.z, r.r) in the same pass. The coarse solve (one thread) runs at the
+    // same time on the restriction of Ap.
+    double coarseDot = 0.0;
+    auto pass = [&] {
+      sums = reduceRows<Eigen::Vector2d>(n, [&](int r0, int r1) {
+        Eigen::Vector2d acc = Eigen::Vector2d::Zero();
+        for (int i = r0; i < r1; ++i) {
+          x.template segment<3>(3 * i) += alpha * p.template segment<3>(3 * i);
+          const Eigen::Matrix<S, 3, 1> ri = r.template segment<3>(3 * i) - alpha * ap.template segment<3>(3 * i);
+          const Eigen::Matrix<S, 3, 1> zi = inv[i] * ri;
+          r.template segment<3>(3 * i) = ri;
+          z.template segment<3>(3 * i) = zi;
+          acc += Eigen::Vector2d(static_cast<double>(ri.dot(zi)), static_cast<double>(ri.squaredNorm()));
+        }
+        return acc;
+      });
+    };
+    if (cc.space)
+      tbb::parallel_invoke([&] { coarseDot = cc.advance(ap, static_cast<double>(alpha), n); }, pass);
+    else
+      pass();
     double rzNew = sums(0);
     ++it;
     if (sums(1) <= stop2) break;
     if (cc.space) {
-      rzNew += cc.update(r, n);
+      rzNew += coarseDot;
       const S beta = static_cast<S>(rzNew / rz);
       forRows(n, [&](int r0, int r1) {
         for (int i = r0; i < r1; ++i)
@@ -384,7 +407,8 @@ LinearSolveResult solveLinear(const BlockMatrix& a, const Eigen::VectorXd& b, Ei
   }
   if (!options.fusedKernels || options.preconditioner == Preconditioner::IncompleteCholesky)
     return plainSolve(a, b, x, options, warm);
-  return options.mixedPrecision ? fusedSolve<float>(a, b, x, options, warm) : fusedSolve<double>(a, b, x, options, warm);
+  return options.mixedPrecision ? fusedSolve<float>(a, b, x, options, warm)
+                                : fusedSolve<double>(a, b, x, options, warm);
 }
 
 }  // namespace drape::newton
