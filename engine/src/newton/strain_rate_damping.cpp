@@ -42,7 +42,6 @@ void MembraneDissipation::beginStep(const StepContext& ctx) {
   m_factor = m_beta * ctx.stiffnessScale / ctx.h;
   const Eigen::VectorXd& xn = *ctx.previousPositions;
   if (m_source && m_source->takeRecordedDeformationGradients(xn, m_startF)) return;
-  m_startF.resize(m_elements.size());
   forRange(static_cast<int>(m_elements.size()), m_options.parallel,
            [&](int s) { m_startF[s] = deformationGradient(m_elements[s], xn); });
 }
@@ -131,8 +130,6 @@ void BendingDissipation::beginStep(const StepContext& ctx) {
   const bool closedForm = m_options.closedFormBending;
   const Eigen::VectorXd& xn = *ctx.previousPositions;
   if (m_source && m_source->takeRecordedGradients(xn, closedForm, m_gradients, m_offsets)) return;
-  m_gradients.resize(m_hinges.size());
-  m_offsets.resize(m_hinges.size());
   forRange(static_cast<int>(m_hinges.size()), m_options.parallel, [&](int s) {
     double phi = 0.0;
     m_gradients[s] = hingeBendGradient(m_hinges[s], xn, closedForm, phi);

@@ -82,7 +82,7 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"solver.newton.h_max", T::Number, "1e-3", "s", "largest time step h_max", 1e-6, 0.1},
       {"solver.newton.omega", T::Number, "0.75", "", "time-splitting factor omega", 0.05, 0.99},
       {"solver.newton.grow_after_steps", T::Integer, "5", "", "good steps before h grows back I_s", 1, 1000},
-      {"solver.newton.relaxation", T::Boolean, "true", "", "initial relaxation (0.1 s at h_max/16, stiffness ramp)"},
+      {"solver.newton.relaxation", T::Boolean, "true", "", "initial relaxation (the first 0.1 s: velocities zeroed, stiffness ramped, h from h_max/16)"},
       {"solver.newton.relaxation_step", T::Choice, "grow", "",
        "relaxation time step: hold h_max/16 for the whole window, or start at h_max/16 and grow back as after a split",
        -1e300, 1e300, {"hold", "grow"}},

@@ -32,7 +32,7 @@ struct NewtonSettings {
   double pinStiffness = 1e4;      // N/m
   bool relaxation = true;         // initial relaxation (5.2)
   double relaxationTime = 0.1;    // s
-  double relaxationStepDivisor = 16.0;  // h = hMax / 16 during relaxation
+  double relaxationStepDivisor = 16.0;  // the relaxation starts at h = hMax / 16
   // true: h stays at hMax / relaxationStepDivisor for the whole window; false: the window starts at that step and
   // h grows back by the usual rule (I_s good steps, 1 / omega), the paper's "initial time step" (5.2).
   bool relaxationHoldStep = false;
