@@ -374,7 +374,14 @@ def sleeve_half(name, top_is_v_positive, cap_length, body, opts):
 
 
 def add_top(g, body, opts, z_front, z_back, prefix=""):
-    """Front and back bodice with two sleeve halves per arm (when opts['sleeve_length'] > 0)."""
+    """Front and back bodice with two sleeve halves per arm (when opts['sleeve_length'] > 0).
+
+    Each sleeve half is placed in its plane with its top seam along the arm, starting sleeve_offset cm out along
+    the arm from the shoulder point and sleeve_raise cm above the arm's line. The stitches pull each seam closed
+    along the straight line between its two sides, so the underarm seam must pass below the arm and beside the
+    torso, and the top seam above the arm (tests/unit/garment_library_test.cpp checks every stitch pair's line
+    against the body).
+    """
     front, sides = bodice(body, prefix + "front", True, opts)
     back, _ = bodice(body, prefix + "back", False, opts)
     g.add(front, in_plane(0, True), (0.0, 0.0, z_front), label=opts.get("label"))
@@ -400,10 +407,14 @@ def add_top(g, body, opts, z_front, z_back, prefix=""):
         angle_back = 180.0 + a if sign > 0 else -a  # seen from behind (2D x = -X)
         fs = sleeve_half(f"{prefix}{side}_sleeve_front", sign > 0, fa, body, opts)
         bs = sleeve_half(f"{prefix}{side}_sleeve_back", sign < 0, ba, body, opts)
-        g.add(fs, in_plane(angle_front, True), (sign * sx, sy, Z_SLEEVE_FRONT), label=opts.get("label"))
+        ar = math.radians(a)  # the arm runs at -a from the horizontal, away from the body
+        d_out, d_up = opts.get("sleeve_offset", 0.0), opts.get("sleeve_raise", 0.0)
+        ox = sign * (sx + d_out * math.cos(ar) + d_up * math.sin(ar))
+        oy = sy - d_out * math.sin(ar) + d_up * math.cos(ar)
+        g.add(fs, in_plane(angle_front, True), (ox, oy, Z_SLEEVE_FRONT), label=opts.get("label"))
         ex, ey = in_plane(angle_back, True)
         ex3, ey3 = (-ex[0], ex[1], 0.0), (-ey[0], ey[1], 0.0)  # back view: mirror X
-        g.add(bs, (ex3, ey3), (sign * sx, sy, Z_SLEEVE_BACK), label=opts.get("label"))
+        g.add(bs, (ex3, ey3), (ox, oy, Z_SLEEVE_BACK), label=opts.get("label"))
         fe = "r_armhole" if sign > 0 else "l_armhole"
         be = "l_armhole" if sign > 0 else "r_armhole"
         g.sew(f, fe, fs.name, "cap")
@@ -535,8 +546,9 @@ def garments(body):
     # T-shirt: jersey, 10 cm ease at the bust, hip length, short sleeves.
     tee = Garment("tshirt", "Short-sleeved T-shirt, 10 cm bust ease, hip length")
     add_top(tee, body, dict(bust_ease=10.0, hip_ease=8.0, waist_ease=None, hem_y=body.hip_y - 4.0, neck_widen=1.0,
-                            neck_depth_front=7.0, neck_depth_back=2.0, shoulder_ext=1.0, armhole_drop=5.0,
-                            sleeve_length=20.0, bicep_ease=8.0, cuff_ratio=0.9), Z_FRONT, Z_BACK)
+                            neck_depth_front=7.0, neck_depth_back=2.0, shoulder_ext=1.0, armhole_drop=9.0,
+                            sleeve_length=20.0, sleeve_offset=12.0, sleeve_raise=2.0, bicep_ease=8.0, cuff_ratio=0.9),
+            Z_FRONT, Z_BACK)
     out.append(tee)
     skirt = Garment("aline_skirt", "A-line skirt, knee length, 2 cm waist ease, 8 cm flare per side seam")
     add_skirt(skirt, body, dict(waist_ease=2.0, hip_ease=4.0, length=m["waist_line"] * 0 + 58.0, flare=8.0),
@@ -548,15 +560,16 @@ def garments(body):
     dress = Garment("sleeveless_dress", "Sleeveless A-line dress, knee length, shaped at the waist")
     add_top(dress, body, dict(bust_ease=8.0, hip_ease=6.0, waist_ease=8.0, hem_y=body.waist_y - 58.0, flare=7.0,
                               neck_widen=2.0, neck_depth_front=9.0, neck_depth_back=3.0, shoulder_ext=-3.0,
-                              armhole_drop=3.0, sleeve_length=0.0), Z_FRONT, Z_BACK)
+                              armhole_drop=8.0, sleeve_length=0.0), Z_FRONT, Z_BACK)
     out.append(dress)
     outfit = Garment("shirt_over_skirt", "Two layers: a loose elbow-sleeve shirt (outer) over the A-line skirt")
     add_skirt(outfit, body, dict(waist_ease=2.0, hip_ease=4.0, length=58.0, flare=8.0), Z_FRONT - 2.0, Z_BACK,
               prefix="skirt_", label="inner")
     add_top(outfit, body, dict(bust_ease=14.0, hip_ease=14.0, waist_ease=None, hem_y=body.hip_y - 6.0,
                                neck_widen=1.5, neck_depth_front=8.0, neck_depth_back=2.0, shoulder_ext=1.5,
-                               armhole_drop=7.0, sleeve_length=30.0, bicep_ease=10.0, cuff_ratio=0.85,
-                               label="outer"), Z_FRONT + Z_OUTER, Z_BACK - Z_OUTER, prefix="shirt_")
+                               armhole_drop=10.0, sleeve_length=30.0, bicep_ease=10.0, cuff_ratio=0.85,
+                               sleeve_offset=12.0, sleeve_raise=2.0, label="outer"),
+            Z_FRONT + Z_OUTER, Z_BACK - Z_OUTER, prefix="shirt_")
     out.append(outfit)
     return out
 
