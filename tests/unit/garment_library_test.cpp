@@ -33,8 +33,8 @@ struct LibraryGarment {
   int panels;
   std::vector<double> enclosedLevels;  // heights (m) whose torso slice the garment must enclose
   // Every stitch pair's straight line clears the default mannequin (see StitchLinesClearTheMannequin). Not for the
-  // trousers: the mannequin's inner thighs meet below the crotch, so the inseam's lines pass 5-7 mm inside them
-  // wherever the legs are placed.
+  // trousers: their inseams hang 1.5 cm either side of the centre line, and the lines between the front and back
+  // inseams pass 5-7 mm inside the mannequin's inner thighs (not fixed yet).
   bool stitchLinesClear = true;
 };
 
