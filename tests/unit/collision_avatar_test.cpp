@@ -1,7 +1,8 @@
 // Avatar collider: signed distance to an icosphere and to a box against the analytic shapes, inside and outside,
-// and the closest point against an all-triangles search.
+// and the closest point against an all-triangles search; a hinted query answers as the unhinted one.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 #include "drape/collision/avatar_collider.h"
@@ -81,6 +82,36 @@ TEST(CollisionAvatarTest, BoundedQueryReportsNothingBeyondTheBound) {
   EXPECT_FALSE(collider.closest(Vector3d(3, 0, 0), s, 1.5));
   EXPECT_TRUE(collider.closest(Vector3d(3, 0, 0), s, 2.5));
   EXPECT_NEAR(s.signedDistance, 2.0, 0.05);
+}
+
+// The hint only seeds the search bound: good, poor, out-of-range and beyond-the-bound hints all give the
+// unhinted answer (same point and distance; the triangle may differ only where two share the closest point).
+TEST(CollisionAvatarTest, HintedQueryAnswersAsTheUnhintedOne) {
+  const AvatarCollider collider(makeIcosphere(Vector3d::Zero(), 0.2, 3));
+  const int faces = collider.mesh().triangleCount();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.35, 0.35);
+  std::uniform_int_distribution<int> face(0, faces - 1);
+  int found = 0, missed = 0;
+  for (int k = 0; k < 3000; ++k) {
+    const Vector3d p(u(rng), u(rng), u(rng));
+    const double bound = k % 2 ? 0.05 : std::numeric_limits<double>::infinity();
+    SurfacePoint plain;
+    const bool hit = collider.closest(p, plain, bound);
+    (hit ? found : missed) += 1;
+    SurfacePoint near;  // the nearest triangle of a nearby point: the hint a moving vertex gets
+    collider.closest(p + Vector3d(0.003, -0.002, 0.001), near);
+    for (const int hint : {near.triangle, face(rng), -1, faces + 7}) {
+      SurfacePoint hinted;
+      ASSERT_EQ(collider.closest(p, hinted, bound, hint), hit) << p.transpose() << " hint " << hint;
+      if (!hit) continue;
+      EXPECT_NEAR(hinted.signedDistance, plain.signedDistance, 1e-12);
+      EXPECT_LT((hinted.closest - plain.closest).norm(), 1e-12);
+      EXPECT_LT((hinted.normal - plain.normal).norm(), 1e-9);
+    }
+  }
+  EXPECT_GT(found, 500);  // both outcomes of the bounded query are exercised
+  EXPECT_GT(missed, 500);
 }
 
 }  // namespace

@@ -5,9 +5,12 @@
 
 #include <Eigen/SparseCholesky>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <random>
+#include <vector>
 
 #include "drape/collision/avatar_collider.h"
 #include "drape/geometry/primitives.h"
@@ -148,6 +151,63 @@ TEST(PdContactSpeed, VertexCarriedThroughTheBodyByInternalForcesIsCaught) {
   // Target on the front side (the side it came from), at the thickness.
   EXPECT_GT(set.targets(0, 2), 0.0);
   EXPECT_NEAR(collider->signedDistance(set.targets.row(0).transpose()), 0.004, 1e-3);
+}
+
+// The broad phase looks only at DOFs that may be in contact (moved at least their start distance minus the
+// thickness), yet every DOF within the thickness of the body at its collision-free position, or whose step
+// crossed into it, gets its constraint. Reference: every DOF checked directly; the sphere mesh is convex, so the
+// signed distance along a segment is convex and its minimum (did the step pass through the body?) is found by
+// ternary search.
+TEST(PdContactSpeed, WatchingOnlyDofsThatMayTouchKeepsEveryConstraint) {
+  auto collider = std::make_shared<collision::AvatarCollider>(makeIcosphere(Eigen::Vector3d::Zero(), 0.1, 3));
+  const double thickness = 0.004;
+  AvatarContacts contacts(collider, AvatarContactOptions{thickness, 0.02, 1e6, 0.0, true});
+  const int n = 3000;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), startGap(-0.002, 0.06), moveLength(0.0, 0.03);
+  auto direction = [&] {
+    Eigen::Vector3d d(unit(rng), unit(rng), unit(rng));
+    while (d.norm() < 0.1) d = Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+    return Eigen::Vector3d(d.normalized());
+  };
+  Eigen::MatrixX3d start(n, 3), xFree(n, 3);
+  std::vector<int> free(n);
+  for (int d = 0; d < n; ++d) {
+    free[d] = d;
+    start.row(d) = ((0.1 + startGap(rng)) * direction()).transpose();
+    xFree.row(d) = start.row(d) + moveLength(rng) * direction().transpose();
+  }
+  // Sessions of a step: first iteration from scratch, then the same positions again (hints in place).
+  for (int round = 0; round < 2; ++round) {
+    contacts.beginStep(start, start, free);
+    ContactAccumulator acc(n);
+    const AvatarContactStats st = contacts.addConstraints(xFree, acc);
+    const ContactSet set = acc.merged();
+    std::vector<char> constrained(n, 0);
+    for (int k = 0; k < set.size(); ++k) constrained[set.dofs[k]] = 1;
+    int expected = 0, candidates = contacts.candidateCount();
+    for (int d = 0; d < n; ++d) {
+      const Eigen::Vector3d a = start.row(d).transpose(), b = xFree.row(d).transpose();
+      auto along = [&](double t) { return collider->signedDistance(a + t * (b - a)); };
+      double lo = 0.0, hi = 1.0;
+      for (int it = 0; it < 100; ++it) {
+        const double m1 = lo + (hi - lo) / 3.0, m2 = hi - (hi - lo) / 3.0;
+        if (along(m1) < along(m2)) hi = m2;
+        else lo = m1;
+      }
+      const double deepest = std::min({along(0.0), along(0.5 * (lo + hi)), along(1.0)});
+      const bool crossed = along(0.0) > 0.0 && deepest < 0.0;
+      const bool want = crossed || along(1.0) < thickness;
+      expected += want;
+      EXPECT_EQ(constrained[d] != 0, want) << "DOF " << d << " start gap " << along(0.0) << " end gap " << along(1.0)
+                                           << " deepest " << deepest;
+    }
+    EXPECT_EQ(set.size(), expected);
+    EXPECT_GT(expected, n / 10);
+    // Fewer queries than the candidates alone (the old rule looked at every candidate, and more).
+    EXPECT_LT(st.watched, candidates);
+    EXPECT_GE(st.watched, expected);
+  }
 }
 
 TEST(PdContactSpeed, ChurnCountsDofsJoiningAndLeaving) {

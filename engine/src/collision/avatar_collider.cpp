@@ -81,14 +81,23 @@ Eigen::Vector3d AvatarCollider::pseudoNormal(int triangle, TriangleRegion region
   return m_faceNormals[triangle];
 }
 
-bool AvatarCollider::closest(const Eigen::Vector3d& p, SurfacePoint& out, double maxDistance) const {
+bool AvatarCollider::closest(const Eigen::Vector3d& p, SurfacePoint& out, double maxDistance, int hint) const {
   const auto& V = m_mesh.vertices;
   const auto& F = m_mesh.triangles;
   auto corner = [&](int f, int k) -> Eigen::Vector3d { return V.row(F(f, k)).transpose(); };
   double best2 = std::isfinite(maxDistance) ? maxDistance * maxDistance : std::numeric_limits<double>::infinity();
-  const int f = m_tree.nearest(
+  int seed = -1;
+  if (hint >= 0 && hint < m_mesh.triangleCount()) {
+    const double d2 = closestPointTriangle(p, corner(hint, 0), corner(hint, 1), corner(hint, 2)).distanceSquared;
+    if (d2 < best2) {
+      best2 = d2;
+      seed = hint;
+    }
+  }
+  int f = m_tree.nearest(
       p, [&](int t) { return closestPointTriangle(p, corner(t, 0), corner(t, 1), corner(t, 2)).distanceSquared; },
       best2);
+  if (f < 0) f = seed;  // nothing strictly closer than the hint
   if (f < 0) return false;
   const PointTriangleResult r = closestPointTriangle(p, corner(f, 0), corner(f, 1), corner(f, 2));
   const Eigen::Vector3d pn = pseudoNormal(f, r.region);

@@ -36,6 +36,7 @@ void AvatarContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matri
   m_bound.assign(nf, 0.0f);
   m_freeStart.resize(nf, 3);
   m_freePredicted.resize(nf, 3);
+  if (static_cast<int>(m_hint.size()) != nf) m_hint.assign(nf, -1);
   if (m_options.targets == ContactTargetKind::StepPlanes) m_planes.assign(nf, StepPlanes{});
   tbb::parallel_for(0, nf, [&](int d) {
     const int v = freeVertices[d];
@@ -44,7 +45,8 @@ void AvatarContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matri
     const double travel = (predicted.row(v) - start.row(v)).norm();
     const double watch = reach + 2.0 * travel;
     collision::SurfacePoint sp;
-    const bool found = m_collider->closest(start.row(v).transpose(), sp, watch + kBoundSlack);
+    const bool found = m_collider->closest(start.row(v).transpose(), sp, watch + kBoundSlack, m_hint[d]);
+    if (found) m_hint[d] = sp.triangle;
     near[d] = found && sp.signedDistance < watch;
     // Rounded down so that the bound stays a lower bound in single precision.
     m_bound[d] = static_cast<float>((found ? std::max(sp.signedDistance, 0.0) : watch + kBoundSlack) * (1.0 - 1e-6));
@@ -81,11 +83,12 @@ int AvatarContacts::firstCrossing(const Eigen::Vector3d& p0, const Eigen::Vector
 }
 
 char AvatarContacts::constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& z,
-                               Eigen::Vector3d& target) const {
+                               Eigen::Vector3d& target, int& hint) const {
   const double thickness = m_options.thickness;
   const double reach = thickness + m_options.margin;
   collision::SurfacePoint sp;
-  const bool near = m_collider->closest(p1, sp, reach);
+  const bool near = m_collider->closest(p1, sp, reach, hint);
+  if (near) hint = sp.triangle;
   const double travel = (p1 - p0).norm();
   // A segment shorter than the end's distance to the surface cannot have crossed it.
   const bool mayCross = m_options.ccd && travel > 0.0 && (near ? sp.signedDistance < travel : travel >= reach);
@@ -206,9 +209,12 @@ char AvatarContacts::constrainToPlanes(int d, const Eigen::Vector3d& x, Eigen::V
 }
 
 AvatarContactStats AvatarContacts::addConstraints(const Eigen::MatrixX3d& xFree, ContactAccumulator& acc) {
-  // Watched DOFs: the candidates, then the DOFs that moved at least their distance bound minus the reach.
-  std::vector<int> watched = m_candidates;
-  if (!m_bound.empty()) {
+  // Watched DOFs (header). The bound is a distance at the step start: a DOF that moved by s is at least
+  // bound - s from the surface, and a segment shorter than its start's distance cannot cross it.
+  const bool planes = m_options.targets == ContactTargetKind::StepPlanes;
+  std::vector<int> watched;
+  if (planes) {
+    watched = m_candidates;
     const double reach = m_options.thickness + m_options.margin;
     std::vector<char> isCandidate(m_bound.size(), 0);
     for (int d : m_candidates) isCandidate[d] = 1;
@@ -218,17 +224,24 @@ AvatarContactStats AvatarContacts::addConstraints(const Eigen::MatrixX3d& xFree,
       if (allowed <= 0.0 || (xFree.row(d) - m_freeStart.row(d)).squaredNorm() >= allowed * allowed)
         watched.push_back(d);
     }
+  } else {
+    // The bound is rounded down; the thickness is widened by a part in a million against rounding.
+    const double thickness = m_options.thickness * (1.0 + 1e-6);
+    for (int d = 0; d < static_cast<int>(m_bound.size()); ++d) {
+      const double allowed = m_bound[d] - thickness;
+      if (allowed <= 0.0 || (xFree.row(d) - m_freeStart.row(d)).squaredNorm() >= allowed * allowed)
+        watched.push_back(d);
+    }
   }
   const int nw = static_cast<int>(watched.size());
   std::vector<char> kind(nw, 0);
   std::vector<int> added(nw, 0);
   std::vector<Eigen::Vector3d> target(nw);
-  const bool planes = m_options.targets == ContactTargetKind::StepPlanes;
   tbb::parallel_for(0, nw, [&](int i) {
     const int d = watched[i];
     kind[i] = planes ? constrainToPlanes(d, xFree.row(d).transpose(), target[i], added[i])
                      : constrain(m_freeStart.row(d).transpose(), xFree.row(d).transpose(),
-                                 m_freePredicted.row(d).transpose(), target[i]);
+                                 m_freePredicted.row(d).transpose(), target[i], m_hint[d]);
     if (!m_options.holdTargets || !kind[i]) return;
     if (m_heldKind[d]) {
       target[i] = m_held[d];
@@ -239,6 +252,7 @@ AvatarContactStats AvatarContacts::addConstraints(const Eigen::MatrixX3d& xFree,
     }
   });
   AvatarContactStats stats;
+  stats.watched = nw;
   for (int i = 0; i < nw; ++i) {
     stats.planesAdded += added[i];
     if (!kind[i]) continue;

@@ -54,6 +54,7 @@ struct AvatarContactOptions {
 };
 
 struct AvatarContactStats {
+  int watched = 0;         // DOFs looked at (closest-point queries made)
   int contacts = 0;        // constraints added
   int ccdContacts = 0;     // of which found by CCD (the proximity test alone would have missed or flipped them);
                            // StepPlanes: whose collision-free position is behind its half-space's surface plane
@@ -75,9 +76,10 @@ class AvatarContacts {
   bool hasCandidates() const { return !m_candidates.empty(); }
   int candidateCount() const { return static_cast<int>(m_candidates.size()); }
 
-  // Adds the constraints of the candidates, and of the other DOFs whose collision-free position moved farther
-  // from the step's start than their distance bound minus thickness + margin, at collision-free positions xFree
-  // (|free| x 3) to acc. Parallel.
+  // Adds the contact constraints at collision-free positions xFree (|free| x 3) to acc. Parallel. A DOF is
+  // looked at when it may be in contact: Reproject mode, when it moved at least its start distance bound minus
+  // the thickness (closer than that it can neither be within the thickness nor have crossed the surface);
+  // StepPlanes mode, when it is a candidate or moved farther than its bound minus thickness + margin.
   AvatarContactStats addConstraints(const Eigen::MatrixX3d& xFree, ContactAccumulator& acc);
 
   const AvatarContactOptions& options() const { return m_options; }
@@ -97,8 +99,9 @@ class AvatarContacts {
   // One watched DOF: a candidate of beginStep or a DOF that moved far (addConstraints). kind: 0 none,
   // 1 proximity, 2 CCD, +4 held by static friction. Reproject mode; p0 start, p1 collision-free position, z
   // inertial prediction.
+  // hint: the DOF's last closest collider triangle (updated; see AvatarCollider::closest).
   char constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& z,
-                 Eigen::Vector3d& target) const;
+                 Eigen::Vector3d& target, int& hint) const;
   // StepPlanes mode: the same for free DOF d at collision-free position x (adds to m_planes[d]); added: set to
   // the number of half-spaces added.
   char constrainToPlanes(int d, const Eigen::Vector3d& x, Eigen::Vector3d& target, int& added);
@@ -116,6 +119,7 @@ class AvatarContacts {
   Eigen::MatrixX3d m_freeStart;                // start position of every free DOF (|free| x 3)
   Eigen::MatrixX3d m_freePredicted;            // inertial prediction z of every free DOF (|free| x 3)
   std::vector<float> m_bound;                  // per free DOF: lower bound of its start distance to the collider
+  std::vector<int> m_hint;                     // per free DOF: its last closest collider triangle, -1 = none yet
   std::vector<Eigen::Vector3d> m_held;         // per free DOF: target held in this step (holdTargets)
   std::vector<char> m_heldKind;                // per free DOF: its kind, 0 = none held
   std::vector<StepPlanes> m_planes;            // per free DOF: half-spaces of this step (StepPlanes)
