@@ -40,14 +40,11 @@ void AvatarContactEnergy::beginStep(const newton::StepContext& ctx) {
   std::lock_guard lock(m_mutex);
   m_startPositions = *ctx.previousPositions;
   m_startDistance.assign(m_vertexCount, 0.0);
-  if (static_cast<int>(m_hint.size()) != m_vertexCount) m_hint.assign(m_vertexCount, -1);
   const double radius = m_params.searchRadius;
   tbb::parallel_for(0, m_vertexCount, [&](int v) {
     // Nothing within the radius: treat as outside by the radius (deeper vertices are ignored, see header).
     SurfacePoint s;
-    const bool found = m_collider->closest(m_startPositions.segment<3>(3 * v), s, radius, m_hint[v]);
-    m_startDistance[v] = found ? s.signedDistance : radius;
-    if (found) m_hint[v] = s.triangle;
+    m_startDistance[v] = m_collider->closest(m_startPositions.segment<3>(3 * v), s, radius) ? s.signedDistance : radius;
   });
   m_cachedX.resize(0);
 }
@@ -72,10 +69,7 @@ void AvatarContactEnergy::update(const Eigen::VectorXd& x) const {
       }
       ++queries.local();
       SurfacePoint s;
-      const bool hinted = !m_hint.empty();  // no hints before the first step
-      const bool found = m_collider->closest(p, s, bound, hinted ? m_hint[v] : -1);
-      if (found && hinted) m_hint[v] = s.triangle;
-      if (!found || !(s.signedDistance < th)) continue;
+      if (!m_collider->closest(p, s, bound) || !(s.signedDistance < th)) continue;
       Active a;
       a.stencil.vertices[0] = v;
       a.stencil.weights[0] = 1.0;

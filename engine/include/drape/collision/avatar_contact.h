@@ -73,7 +73,6 @@ class AvatarContactEnergy : public newton::Energy {
   ContactParameters m_params;
   Eigen::VectorXd m_startPositions;     // x at the last beginStep (empty before the first)
   std::vector<double> m_startDistance;  // signed distance at m_startPositions per vertex
-  mutable std::vector<int> m_hint;      // per vertex: its last closest collider triangle (a query hint), -1 none
   mutable std::mutex m_mutex;
   mutable Eigen::VectorXd m_cachedX;
   mutable std::vector<Active> m_active;
