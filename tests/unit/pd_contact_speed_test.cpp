@@ -177,7 +177,7 @@ TEST(PdContactSpeed, WatchingOnlyDofsThatMayTouchKeepsEveryConstraint) {
     start.row(d) = ((0.1 + startGap(rng)) * direction()).transpose();
     xFree.row(d) = start.row(d) + moveLength(rng) * direction().transpose();
   }
-  // Sessions of a step: first iteration from scratch, then the same positions again (hints in place).
+  // Two rounds: the first without hints, the second with the hints the first one left.
   for (int round = 0; round < 2; ++round) {
     contacts.beginStep(start, start, free);
     ContactAccumulator acc(n);
