@@ -211,27 +211,19 @@ char AvatarContacts::constrainToPlanes(int d, const Eigen::Vector3d& x, Eigen::V
 AvatarContactStats AvatarContacts::addConstraints(const Eigen::MatrixX3d& xFree, ContactAccumulator& acc) {
   // Watched DOFs (header). The bound is a distance at the step start: a DOF that moved by s is at least
   // bound - s from the surface, and a segment shorter than its start's distance cannot cross it.
+  // StepPlanes: every candidate, and the others once they moved within thickness + margin (their half-spaces
+  // carry state between iterations). Reproject: within the thickness, widened by a part in a million because the
+  // bound is rounded down.
   const bool planes = m_options.targets == ContactTargetKind::StepPlanes;
-  std::vector<int> watched;
-  if (planes) {
-    watched = m_candidates;
-    const double reach = m_options.thickness + m_options.margin;
-    std::vector<char> isCandidate(m_bound.size(), 0);
-    for (int d : m_candidates) isCandidate[d] = 1;
-    for (int d = 0; d < static_cast<int>(m_bound.size()); ++d) {
-      if (isCandidate[d]) continue;
-      const double allowed = m_bound[d] - reach;
-      if (allowed <= 0.0 || (xFree.row(d) - m_freeStart.row(d)).squaredNorm() >= allowed * allowed)
-        watched.push_back(d);
-    }
-  } else {
-    // The bound is rounded down; the thickness is widened by a part in a million against rounding.
-    const double thickness = m_options.thickness * (1.0 + 1e-6);
-    for (int d = 0; d < static_cast<int>(m_bound.size()); ++d) {
-      const double allowed = m_bound[d] - thickness;
-      if (allowed <= 0.0 || (xFree.row(d) - m_freeStart.row(d)).squaredNorm() >= allowed * allowed)
-        watched.push_back(d);
-    }
+  const double slack = planes ? m_options.thickness + m_options.margin : m_options.thickness * (1.0 + 1e-6);
+  std::vector<int> watched = planes ? m_candidates : std::vector<int>{};
+  std::vector<char> listed(m_bound.size(), 0);
+  for (int d : watched) listed[d] = 1;
+  for (int d = 0; d < static_cast<int>(m_bound.size()); ++d) {
+    if (listed[d]) continue;
+    const double allowed = m_bound[d] - slack;
+    if (allowed <= 0.0 || (xFree.row(d) - m_freeStart.row(d)).squaredNorm() >= allowed * allowed)
+      watched.push_back(d);
   }
   const int nw = static_cast<int>(watched.size());
   std::vector<char> kind(nw, 0);
