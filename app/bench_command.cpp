@@ -40,7 +40,6 @@ RunResult runOnce(const CliOptions& options, std::vector<std::pair<std::string, 
   Simulation simulation(std::move(scene));
   RunResult r;
   r.label = label;
-  r.status = "MaxSimTime";
   StepReport last;
   while (!simulation.finished()) {
     last = simulation.step();
@@ -48,8 +47,8 @@ RunResult runOnce(const CliOptions& options, std::vector<std::pair<std::string, 
       r.status = toString(last.status);
       break;
     }
-    if (last.atRest) r.status = "AtRest";
   }
+  if (r.status.empty()) r.status = simulation.endReason();
   r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.simTime = simulation.time();
   r.steps = simulation.steps();

@@ -75,7 +75,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
     nlohmann::json perStep = nlohmann::json::array();
     int domains = 0;
     std::string lastStage = simulation.stage();
-    std::string status = "MaxSimTime";
+    std::string status;  // Diverged or Cancelled from a step, else why the run finished
     double nextPrint = 0.0;
     StepReport last;
     while (!simulation.finished()) {
@@ -90,7 +90,6 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
         status = toString(last.status);
         break;
       }
-      if (last.atRest) status = "AtRest";
       if (last.time >= nextPrint) {
         char line[200];
         std::snprintf(line, sizeof line, "  %s t=%.3f s  h=%.2e  iterations=%d  cg=%d  residual=%.2e  KE=%.2e  contacts=%d\n",
@@ -100,6 +99,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
         nextPrint = last.time + 0.1;
       }
     }
+    if (status.empty()) status = simulation.endReason();
     exportGarment(simulation.garment(), simulation.positions(), options.output);
     if (!options.png.empty()) renderToPng(simulation.snapshot(), options, camera, options.png, out);
     stats = {{"status", status}, {"steps", simulation.steps()}, {"sim_time_s", simulation.time()}, {"terms", terms},

@@ -38,6 +38,17 @@ TEST(CliSimulate, DrapeWritesGarmentAndPerStepStats) {
   EXPECT_NE(readWhole(obj).find("\nf "), std::string::npos);
 }
 
+TEST(CliSimulate, StepLimitIsReportedAsSuch) {
+  const auto obj = kScratch / "steps.obj", stats = kScratch / "steps.json";
+  auto r = drape("--simulate " + asset("scenes/hanging_cloth.json") + " --set mesh.target_edge_length=0.1" +
+                 " --set solver.max_steps=3 -o " + quote(obj.string()) + " --stats " + quote(stats.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  const auto j = nlohmann::json::parse(readWhole(stats));
+  EXPECT_EQ(j.at("status"), "MaxSteps");
+  EXPECT_EQ(j.at("steps").get<int>(), 3);
+  EXPECT_LT(j.at("sim_time_s").get<double>(), 0.01);  // far from the scene's time limit
+}
+
 TEST(CliSimulate, ColliderSceneUsesContactAndFriction) {
   const auto stats = kScratch / "tablecloth.json";
   // The cloth starts 0.2 m above the sphere: after 0.4 s it lies on it.
@@ -159,6 +170,19 @@ TEST(CliBench, SweepReportsEveryRunAgainstTheReference) {
   EXPECT_EQ(j.at("runs")[0].at("run"), "reference");
   EXPECT_DOUBLE_EQ(j.at("runs")[0].at("mean_distance_mm").get<double>(), 0.0);
   for (const auto& run : j.at("runs")) EXPECT_GT(run.at("wall_time_s").get<double>(), 0.0);
+}
+
+TEST(CliBench, FailsWhenTheReferenceDoesNotFinishItsDrape) {
+  // Three steps of the reference's 0.25 ms cannot reach 0.01 s: the reference stops at the step limit, and the
+  // distances to it would measure nothing.
+  const auto report = kScratch / "bench_unfinished.json";
+  auto r = drape("--bench " + asset("scenes/hanging_cloth.json") +
+                 " --set mesh.target_edge_length=0.2 --set solver.max_steps=3 --max-sim-time 0.01"
+                 " --sweep solver.cg.tolerance=1e-1 -o " + quote(report.string()));
+  EXPECT_EQ(r.exitCode, 1) << r.err << r.out;
+  EXPECT_NE(r.out.find("reference drape ended MaxSteps"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(readWhole(report));
+  EXPECT_EQ(j.at("reference_status"), "MaxSteps");
 }
 
 }  // namespace

@@ -192,12 +192,15 @@ void Simulation::clearCancel() {
   if (m_solver->newton) m_solver->newton->clearCancel();
 }
 
-bool Simulation::finished() const {
+bool Simulation::finished() const { return !endReason().empty(); }
+
+std::string Simulation::endReason() const {
   const bool previewOnly = m_scene.settings.text("solver.stage") == "preview";
-  const bool limit = time() >= m_scene.settings.number("solver.max_sim_time") - 1e-12 ||
-                     m_steps >= m_scene.settings.integer("solver.max_steps");
-  if (m_solver->preview && !previewOnly) return limit;  // else the drape follows
-  return m_atRest || limit;
+  // A preview that hands over to the drape is never at rest itself: the drape follows.
+  if (m_atRest && (!m_solver->preview || previewOnly)) return "AtRest";
+  if (time() >= m_scene.settings.number("solver.max_sim_time") - 1e-12) return "MaxSimTime";
+  if (m_steps >= m_scene.settings.integer("solver.max_steps")) return "MaxSteps";
+  return "";
 }
 
 StepReport Simulation::step() {

@@ -78,6 +78,9 @@ class Simulation {
   StepReport step();
   // True when the garment is at rest (early stop) or the scene's time/step limit is reached.
   bool finished() const;
+  // Why the run finished: "AtRest", "MaxSimTime" (solver.max_sim_time) or "MaxSteps" (solver.max_steps); empty
+  // while it is not finished. A Diverged or Cancelled step is the step's own status (StepReport).
+  std::string endReason() const;
   Snapshot snapshot() const;
   void requestCancel();
   // Forgets a cancel request (after a cancelled step, so that the next step runs).
