@@ -13,28 +13,28 @@
 
 namespace drape::collision {
 
-AvatarContactEnergy::AvatarContactEnergy(std::shared_ptr<const AvatarCollider> collider, int vertexCount,
-                                         ContactParameters params)
-    : m_collider(std::move(collider)), m_vertexCount(vertexCount), m_params(params) {}
-
-double AvatarContactEnergy::penalty(double distance) const {
-  const double k = m_params.stiffness;
-  const double t = m_params.thickness;
+double AvatarPenalty::energy(double distance) const {
+  const double k = stiffness;
+  const double t = thickness;
   if (distance >= 0.0) return 0.5 * k * (t - distance) * (t - distance);
   const double u = -distance;
-  return 0.5 * k * t * t + k * t * u + 0.5 * k * m_params.insideStiffnessFactor * u * u;
+  return 0.5 * k * t * t + k * t * u + 0.5 * k * insideStiffnessFactor * u * u;
 }
 
-double AvatarContactEnergy::penaltyForce(double distance) const {
-  const double k = m_params.stiffness;
-  const double t = m_params.thickness;
+double AvatarPenalty::force(double distance) const {
+  const double k = stiffness;
+  const double t = thickness;
   if (distance >= 0.0) return k * (t - distance);
-  return k * t - k * m_params.insideStiffnessFactor * distance;
+  return k * t - k * insideStiffnessFactor * distance;
 }
 
-double AvatarContactEnergy::penaltyStiffness(double distance) const {
-  return distance >= 0.0 ? m_params.stiffness : m_params.stiffness * m_params.insideStiffnessFactor;
+double AvatarPenalty::stiffnessAt(double distance) const {
+  return distance >= 0.0 ? stiffness : stiffness * insideStiffnessFactor;
 }
+
+AvatarContactEnergy::AvatarContactEnergy(std::shared_ptr<const AvatarCollider> collider, int vertexCount,
+                                         ContactParameters params)
+    : m_collider(std::move(collider)), m_vertexCount(vertexCount), m_params(params), m_penalty(params) {}
 
 void AvatarContactEnergy::beginStep(const newton::StepContext& ctx) {
   std::lock_guard lock(m_mutex);
@@ -117,7 +117,7 @@ double AvatarContactEnergy::value(const Eigen::VectorXd& x) const {
   std::lock_guard lock(m_mutex);
   update(x);
   double e = 0.0;
-  for (const Active& a : m_active) e += penalty(a.stencil.distance);
+  for (const Active& a : m_active) e += m_penalty.energy(a.stencil.distance);
   return e;
 }
 
@@ -125,7 +125,7 @@ void AvatarContactEnergy::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd&
   std::lock_guard lock(m_mutex);
   update(x);
   for (const Active& a : m_active)
-    g.segment<3>(3 * a.stencil.vertices[0]) -= penaltyForce(a.stencil.distance) * a.stencil.normal;
+    g.segment<3>(3 * a.stencil.vertices[0]) -= m_penalty.force(a.stencil.distance) * a.stencil.normal;
 }
 
 void AvatarContactEnergy::addHessian(const Eigen::VectorXd& x, newton::BlockMatrix& h) const {
@@ -134,9 +134,9 @@ void AvatarContactEnergy::addHessian(const Eigen::VectorXd& x, newton::BlockMatr
   for (const Active& a : m_active) {
     const Eigen::Vector3d& n = a.stencil.normal;
     // With f = dE/dg and s = d2E/dg2 (g = thickness - d): hess E = s n n^T - f hess d.
-    double coefficient = -penaltyForce(a.stencil.distance) * a.curvature;
+    double coefficient = -m_penalty.force(a.stencil.distance) * a.curvature;
     if (m_params.projectHessian) coefficient = std::max(coefficient, 0.0);
-    Eigen::Matrix3d block = penaltyStiffness(a.stencil.distance) * n * n.transpose();
+    Eigen::Matrix3d block = m_penalty.stiffnessAt(a.stencil.distance) * n * n.transpose();
     if (coefficient != 0.0) block += coefficient * (a.complement - n * n.transpose());
     h.addDynamicBlock(a.stencil.vertices[0], a.stencil.vertices[0], block);
   }

@@ -1,6 +1,7 @@
 // Composition of the contact terms; see contact_factory.h.
 #include "drape/collision/contact_factory.h"
 
+#include "drape/collision/avatar_feature_contact.h"
 #include "drape/collision/self_contact.h"
 
 namespace drape::collision {
@@ -16,6 +17,12 @@ std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(const ContactSe
     auto e = std::make_unique<AvatarContactEnergy>(setup.avatar, vertexCount, setup.avatarContact);
     avatar = e.get();
     out.push_back(std::move(e));
+    if (setup.featureRadius > 0.0 && triangles.rows() > 0) {
+      std::vector<FeatureVertex> features = avatarFeatureVertices(setup.avatar->mesh(), setup.featureRadius);
+      if (!features.empty())
+        out.push_back(std::make_unique<AvatarFeatureContactEnergy>(std::move(features), triangles, vertexCount,
+                                                                   setup.avatarContact, setup.featureReach));
+    }
   }
   if (setup.selfCollision && triangles.rows() > 0) {
     auto e = std::make_unique<SelfContactEnergy>(triangles, vertexCount, contactMergedVertices(stitches, edgeStitches),

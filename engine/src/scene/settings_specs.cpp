@@ -126,6 +126,9 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"contact.stiffness", T::Number, "100", "N/m", "penalty stiffness of avatar and cloth contact (paper: 1e2)", 0, 1e9},
       {"contact.thickness", T::Number, "", "m", "override: contact thickness (default: the fabric's thickness, at least 2 mm)", 0, 0.1},
       {"contact.friction", T::Boolean, "true", "", "Coulomb friction (off, or fabric friction 0: no friction term)"},
+      {"contact.avatar_features", T::Boolean, "true", "",
+       "the avatar's sharp points (radius of curvature below mean garment edge^2 / (4 thickness)) push the garment's "
+       "triangles, not only its vertices (Newton drape)"},
       {"contact.self_collision", T::Boolean, "false", "", "cloth-cloth contact (builds the self-collision BVH)"},
       {"camera.view", T::Choice, "three-quarter", "", "default camera preset", -1e300, 1e300,
        {"front", "back", "left", "right", "three-quarter"}},

@@ -37,6 +37,19 @@ struct ContactParameters {
   double searchRadius = 0.05;
 };
 
+// The penalty above as a function of the signed distance d: energy, force dE/dg (g = thickness - d, so the force
+// pushes outwards when positive) and stiffness d2E/dg2. Shared with the avatar's feature contact.
+struct AvatarPenalty {
+  double stiffness = 1e2;
+  double thickness = 2e-3;
+  double insideStiffnessFactor = 100.0;
+  explicit AvatarPenalty(const ContactParameters& p)
+      : stiffness(p.stiffness), thickness(p.thickness), insideStiffnessFactor(p.insideStiffnessFactor) {}
+  double energy(double distance) const;
+  double force(double distance) const;
+  double stiffnessAt(double distance) const;
+};
+
 class AvatarContactEnergy : public newton::Energy {
  public:
   // vertexCount: garment vertices; collider shared with other users (the PD preview, statistics).
@@ -63,14 +76,11 @@ class AvatarContactEnergy : public newton::Energy {
     Eigen::Matrix3d complement = Eigen::Matrix3d::Zero();  // projector off the closest feature's span
   };
   void update(const Eigen::VectorXd& x) const;
-  // Penalty energy, its derivative and second derivative with respect to the gap g = thickness - d (g > 0).
-  double penalty(double distance) const;
-  double penaltyForce(double distance) const;
-  double penaltyStiffness(double distance) const;
 
   std::shared_ptr<const AvatarCollider> m_collider;
   int m_vertexCount = 0;
   ContactParameters m_params;
+  AvatarPenalty m_penalty;
   Eigen::VectorXd m_startPositions;     // x at the last beginStep (empty before the first)
   std::vector<double> m_startDistance;  // signed distance at m_startPositions per vertex
   mutable std::mutex m_mutex;

@@ -1,7 +1,8 @@
 #pragma once
 // Builds only the contact terms a scene needs (DESIGN.md section 1): no avatar -> no avatar contact and no
-// collider; self-collision off -> no cloth-cloth BVH; friction coefficient 0 -> no friction energy. The energies
-// come back in the order the solver should call beginStep in, named "avatar_contact", "self_contact", "friction".
+// collider; self-collision off -> no cloth-cloth BVH; friction coefficient 0 -> no friction energy; an avatar
+// without features sharper than featureRadius -> no feature contact. The energies come back in the order the
+// solver should call beginStep in, named "avatar_contact", "avatar_feature_contact", "self_contact", "friction".
 #include <Eigen/Core>
 #include <memory>
 #include <utility>
@@ -18,6 +19,10 @@ namespace drape::collision {
 struct ContactSetup {
   std::shared_ptr<const AvatarCollider> avatar;  // null: the scene has no avatar
   ContactParameters avatarContact;
+  // Avatar vertices whose radius of curvature is below this (metres) also push the garment's triangles
+  // (avatar_feature_contact.h, "avatar_feature_contact"); 0: none.
+  double featureRadius = 0.0;
+  double featureReach = 0.01;  // metres behind a feature within which a garment triangle is still pushed out
   bool selfCollision = false;
   ContactParameters selfContact;
   double selfMargin = 0.0;           // extra BVH search radius beyond the thickness, metres (0: = thickness)

@@ -1,0 +1,71 @@
+#pragma once
+// The avatar's sharp features against the garment's triangles, for the Newton drape. Avatar contact
+// (avatar_contact.h) keeps every garment *vertex* out of the body; between its vertices a garment triangle is flat,
+// and where the body curves more tightly than the triangle spans (a bust point, a shoulder tip under a 2 cm mesh)
+// the body pokes through the triangle although every vertex is outside it. This term pushes those triangles out.
+//
+// Feature vertices are the avatar vertices that stand above all their neighbours (along the vertex normal n) with
+// a radius of curvature below maxRadius in some direction: R = |q - p|^2 / (2 n.(p - q)) over the neighbours q.
+// At the start of each step every feature vertex p looks along its normal for a garment triangle within reach;
+// the point of that triangle at fixed barycentric weights w (those of the crossing at x_n) must stay at least the
+// contact thickness t above p:
+//   s(x) = n . (sum_i w_i x_i - p),   E = penalty(s), with the avatar contact's penalty in s
+// (soft band 0 <= s < t with stiffness k, k x insideStiffnessFactor below 0). The pairs are fixed for the step, so
+// E is one quadratic-by-parts function of x and its Hessian k w_i w_j n n^T is exact and positive semi-definite.
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "drape/geometry/triangle_mesh.h"
+#include "drape/collision/avatar_contact.h"
+#include "drape/collision/bvh.h"
+#include "drape/newton/energy.h"
+
+namespace drape::collision {
+
+struct FeatureVertex {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // unit, outward
+};
+
+// Avatar vertices standing above every neighbour along their area-weighted normal, with the smallest radius of
+// curvature towards a neighbour below maxRadius (metres). Vertices on an open boundary are not features.
+std::vector<FeatureVertex> avatarFeatureVertices(const TriangleMesh& avatar, double maxRadius);
+
+class AvatarFeatureContactEnergy : public newton::Energy {
+ public:
+  // garmentTriangles: |F| x 3 into the garment's vertexCount vertices. params: the avatar contact's (stiffness,
+  // thickness, insideStiffnessFactor). reach: metres behind a feature within which a triangle is still pushed out
+  // (about half a garment edge: a triangle whose vertices are outside the body is not deeper than its sag).
+  AvatarFeatureContactEnergy(std::vector<FeatureVertex> features, const Eigen::MatrixX3i& garmentTriangles,
+                             int vertexCount, ContactParameters params, double reach);
+
+  std::string_view name() const override { return "avatar_feature_contact"; }
+  void beginStep(const newton::StepContext& ctx) override;
+  double value(const Eigen::VectorXd& x) const override;
+  void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
+  void addHessian(const Eigen::VectorXd& x, newton::BlockMatrix& h) const override;
+
+  int featureCount() const { return static_cast<int>(m_features.size()); }
+  // Feature-triangle pairs held for the current step.
+  int pairCount() const { return static_cast<int>(m_pairs.size()); }
+
+ private:
+  struct Pair {
+    int feature = 0;
+    std::array<int, 3> vertices{};
+    Eigen::Vector3d weights = Eigen::Vector3d::Zero();  // barycentric, sum 1
+  };
+  double gap(const Pair& pair, const Eigen::VectorXd& x) const;  // s(x)
+
+  std::vector<FeatureVertex> m_features;
+  Eigen::MatrixX3i m_triangles;
+  int m_vertexCount = 0;
+  ContactParameters m_params;
+  AvatarPenalty m_penalty;
+  double m_reach = 0.0;
+  Bvh m_bvh;  // over the garment's triangles at x_n, built once and refitted every step
+  std::vector<Pair> m_pairs;
+};
+
+}  // namespace drape::collision

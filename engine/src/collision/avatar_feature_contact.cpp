@@ -1,0 +1,157 @@
+#include "drape/collision/avatar_feature_contact.h"
+
+#include <Eigen/Geometry>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "drape/collision/aabb.h"
+
+namespace drape::collision {
+
+std::vector<FeatureVertex> avatarFeatureVertices(const TriangleMesh& avatar, double maxRadius) {
+  const int n = avatar.vertexCount();
+  std::vector<Eigen::Vector3d> normal(n, Eigen::Vector3d::Zero());
+  std::vector<std::vector<int>> neighbours(n);
+  std::map<std::pair<int, int>, int> edgeUses;  // an edge used once lies on an open boundary
+  for (int f = 0; f < avatar.triangleCount(); ++f) {
+    const Eigen::Vector3i t = avatar.triangles.row(f);
+    const Eigen::Vector3d a = avatar.vertices.row(t[0]), b = avatar.vertices.row(t[1]), c = avatar.vertices.row(t[2]);
+    const Eigen::Vector3d areaNormal = (b - a).cross(c - a);  // twice the area, outward (counter-clockwise)
+    for (int k = 0; k < 3; ++k) {
+      normal[t[k]] += areaNormal;
+      const int i = t[k], j = t[(k + 1) % 3];
+      neighbours[i].push_back(j);
+      neighbours[j].push_back(i);
+      ++edgeUses[{std::min(i, j), std::max(i, j)}];
+    }
+  }
+  std::vector<char> boundary(n, 0);
+  for (const auto& [edge, uses] : edgeUses)
+    if (uses == 1) boundary[edge.first] = boundary[edge.second] = 1;
+  std::vector<FeatureVertex> out;
+  for (int v = 0; v < n; ++v) {
+    if (boundary[v] || neighbours[v].empty() || normal[v].squaredNorm() == 0.0) continue;
+    const Eigen::Vector3d p = avatar.vertices.row(v);
+    const Eigen::Vector3d nv = normal[v].normalized();
+    bool peak = true;
+    double radius = std::numeric_limits<double>::infinity();
+    for (int q : neighbours[v]) {
+      const Eigen::Vector3d d = p - Eigen::Vector3d(avatar.vertices.row(q));
+      const double height = nv.dot(d);
+      if (!(height > 0.0)) {
+        peak = false;
+        break;
+      }
+      radius = std::min(radius, d.squaredNorm() / (2.0 * height));
+    }
+    if (peak && radius < maxRadius) out.push_back({p, nv});
+  }
+  return out;
+}
+
+AvatarFeatureContactEnergy::AvatarFeatureContactEnergy(std::vector<FeatureVertex> features,
+                                                       const Eigen::MatrixX3i& garmentTriangles, int vertexCount,
+                                                       ContactParameters params, double reach)
+    : m_features(std::move(features)),
+      m_triangles(garmentTriangles),
+      m_vertexCount(vertexCount),
+      m_params(params),
+      m_penalty(params),
+      m_reach(reach) {}
+
+void AvatarFeatureContactEnergy::beginStep(const newton::StepContext& ctx) {
+  const Eigen::VectorXd& x = *ctx.previousPositions;
+  const int nt = static_cast<int>(m_triangles.rows());
+  auto corner = [&](int f, int k) -> Eigen::Vector3d { return x.segment<3>(3 * m_triangles(f, k)); };
+  std::vector<BoundingBox> boxes(nt);
+  for (int f = 0; f < nt; ++f) boxes[f] = boxOf(corner(f, 0), corner(f, 1), corner(f, 2));
+  if (m_bvh.primitiveCount() == nt)
+    m_bvh.refit(boxes);
+  else
+    m_bvh.build(boxes);
+  // A triangle is taken when the line through the feature along its normal crosses it between the reach behind
+  // the feature and twice the thickness in front (the step's motion is far below the thickness).
+  const double ahead = 2.0 * m_params.thickness, behind = m_reach;
+  tbb::enumerable_thread_specific<std::vector<Pair>> local;
+  tbb::parallel_for(tbb::blocked_range<int>(0, featureCount()), [&](const tbb::blocked_range<int>& range) {
+    auto& out = local.local();
+    for (int i = range.begin(); i < range.end(); ++i) {
+      const FeatureVertex& fv = m_features[i];
+      BoundingBox reach = boxOf(fv.position - behind * fv.normal, fv.position + ahead * fv.normal);
+      Pair best;
+      double bestAlong = std::numeric_limits<double>::infinity();
+      m_bvh.forEachOverlap(reach, [&](int f) {
+        const Eigen::Vector3d a = corner(f, 0), b = corner(f, 1), c = corner(f, 2);
+        // Line p + s n against the triangle's plane, in barycentric coordinates (Moller-Trumbore).
+        const Eigen::Vector3d e1 = b - a, e2 = c - a, h = fv.normal.cross(e2);
+        const double det = e1.dot(h);
+        if (std::abs(det) < 1e-18) return;
+        const Eigen::Vector3d sv = fv.position - a;
+        const double u = sv.dot(h) / det;
+        const Eigen::Vector3d q = sv.cross(e1);
+        const double w = fv.normal.dot(q) / det;
+        if (u < 0.0 || w < 0.0 || u + w > 1.0) return;
+        const double along = e2.dot(q) / det;
+        if (along < -behind || along > ahead || std::abs(along) >= std::abs(bestAlong)) return;
+        bestAlong = along;
+        best.feature = i;
+        best.vertices = {m_triangles(f, 0), m_triangles(f, 1), m_triangles(f, 2)};
+        best.weights = Eigen::Vector3d(1.0 - u - w, u, w);
+      });
+      if (std::isfinite(bestAlong)) out.push_back(best);
+    }
+  });
+  m_pairs.clear();
+  for (auto& part : local) m_pairs.insert(m_pairs.end(), part.begin(), part.end());
+  std::sort(m_pairs.begin(), m_pairs.end(), [](const Pair& a, const Pair& b) { return a.feature < b.feature; });
+}
+
+double AvatarFeatureContactEnergy::gap(const Pair& pair, const Eigen::VectorXd& x) const {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k) point += pair.weights[k] * x.segment<3>(3 * pair.vertices[k]);
+  const FeatureVertex& fv = m_features[pair.feature];
+  return fv.normal.dot(point - fv.position);
+}
+
+double AvatarFeatureContactEnergy::value(const Eigen::VectorXd& x) const {
+  double e = 0.0;
+  for (const Pair& pair : m_pairs) {
+    const double s = gap(pair, x);
+    if (s < m_params.thickness) e += m_penalty.energy(s);
+  }
+  return e;
+}
+
+void AvatarFeatureContactEnergy::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
+  for (const Pair& pair : m_pairs) {
+    const double s = gap(pair, x);
+    if (s >= m_params.thickness) continue;
+    const Eigen::Vector3d push = m_penalty.force(s) * m_features[pair.feature].normal;  // -dE/ds n
+    for (int k = 0; k < 3; ++k) g.segment<3>(3 * pair.vertices[k]) -= pair.weights[k] * push;
+  }
+}
+
+void AvatarFeatureContactEnergy::addHessian(const Eigen::VectorXd& x, newton::BlockMatrix& h) const {
+  for (const Pair& pair : m_pairs) {
+    const double s = gap(pair, x);
+    if (s >= m_params.thickness) continue;
+    const Eigen::Vector3d& n = m_features[pair.feature].normal;
+    const Eigen::Matrix3d nn = m_penalty.stiffnessAt(s) * n * n.transpose();
+    for (int i = 0; i < 3; ++i)
+      for (int j = i; j < 3; ++j) {
+        const double w = pair.weights[i] * pair.weights[j];
+        const int vi = pair.vertices[i], vj = pair.vertices[j];
+        if (vi == vj)
+          h.addDynamicBlock(vi, vi, (i == j ? 1.0 : 2.0) * w * nn);
+        else
+          h.addDynamicBlock(vi, vj, w * nn);
+      }
+  }
+}
+
+}  // namespace drape::collision
