@@ -8,6 +8,8 @@
 #include <fstream>
 
 #include "drape/collision/avatar_feature_contact.h"
+#include "drape/collision/contact_factory.h"
+#include "drape/collision/friction.h"
 #include "drape/geometry/primitives.h"
 #include "drape/scene/scene.h"
 #include "drape/sim/simulation.h"
@@ -86,6 +88,36 @@ TEST(AvatarFeatureContact, DerivativesMatchFiniteDifferences) {
   energy.beginStep(ctx);
   EXPECT_EQ(energy.pairCount(), 0);
   EXPECT_EQ(energy.value(far), 0.0);
+}
+
+TEST(AvatarFeatureContact, FactoryBuildsItAndFrictionHoldsItsPairs) {
+  // A cone tip 1 mm under the middle of a triangle: the factory makes the feature term next to the avatar contact,
+  // and friction lags the pair as a three-vertex stencil at the triangle's point.
+  ContactSetup setup;
+  setup.avatar = std::make_shared<AvatarCollider>(makeCone(Eigen::Vector3d::Zero(), 0.02, 0.02, 16));
+  setup.avatarContact.thickness = 0.004;
+  setup.featureRadius = 0.03;
+  setup.featureReach = 0.02;
+  setup.frictionCoefficient = 0.4;
+  Eigen::MatrixX3i triangles(1, 3);
+  triangles << 0, 1, 2;
+  Eigen::VectorXd x(9);
+  x << -0.05, 0.001, -0.03, 0.05, 0.001, -0.03, 0.0, 0.001, 0.06;
+  auto energies = makeContactEnergies(setup, 3, triangles, {});
+  ASSERT_EQ(energies.size(), 3u);
+  EXPECT_EQ(energies[0]->name(), "avatar_contact");
+  EXPECT_EQ(energies[1]->name(), "avatar_feature_contact");
+  EXPECT_EQ(energies[2]->name(), "friction");
+  newton::StepContext ctx;
+  ctx.previousPositions = &x;
+  for (auto& e : energies) e->beginStep(ctx);
+  const auto& lagged = static_cast<const FrictionEnergy&>(*energies[2]).laggedContacts();
+  ASSERT_EQ(lagged.size(), 1u);  // the vertices are 1 mm above the cone's base plane, far from its surface
+  EXPECT_EQ(lagged[0].stencil.count, 3);
+  EXPECT_NEAR(lagged[0].stencil.distance, 0.001, 1e-12);
+  EXPECT_NEAR(lagged[0].normalForce, setup.avatarContact.stiffness * 0.003, 1e-9);
+  setup.featureRadius = 0.0;
+  EXPECT_EQ(makeContactEnergies(setup, 3, triangles, {}).size(), 2u);
 }
 
 // Height of the garment above (x, z): the highest triangle whose horizontal projection holds the point.

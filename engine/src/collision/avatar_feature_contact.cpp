@@ -118,6 +118,24 @@ double AvatarFeatureContactEnergy::gap(const Pair& pair, const Eigen::VectorXd& 
   return fv.normal.dot(point - fv.position);
 }
 
+std::vector<ContactStencil> AvatarFeatureContactEnergy::contacts(const Eigen::VectorXd& x) const {
+  std::vector<ContactStencil> out;
+  for (const Pair& pair : m_pairs) {
+    const double s = gap(pair, x);
+    if (s >= m_params.thickness) continue;
+    ContactStencil c;
+    c.count = 3;
+    for (int k = 0; k < 3; ++k) {
+      c.vertices[k] = pair.vertices[k];
+      c.weights[k] = pair.weights[k];
+    }
+    c.distance = s;
+    c.normal = m_features[pair.feature].normal;
+    out.push_back(c);
+  }
+  return out;
+}
+
 double AvatarFeatureContactEnergy::value(const Eigen::VectorXd& x) const {
   double e = 0.0;
   for (const Pair& pair : m_pairs) {

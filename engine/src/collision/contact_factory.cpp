@@ -13,15 +13,19 @@ std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(const ContactSe
   std::vector<std::unique_ptr<newton::Energy>> out;
   const AvatarContactEnergy* avatar = nullptr;
   const SelfContactEnergy* self = nullptr;
+  const AvatarFeatureContactEnergy* featureContact = nullptr;
   if (setup.avatar) {
     auto e = std::make_unique<AvatarContactEnergy>(setup.avatar, vertexCount, setup.avatarContact);
     avatar = e.get();
     out.push_back(std::move(e));
     if (setup.featureRadius > 0.0 && triangles.rows() > 0) {
       std::vector<FeatureVertex> features = avatarFeatureVertices(setup.avatar->mesh(), setup.featureRadius);
-      if (!features.empty())
-        out.push_back(std::make_unique<AvatarFeatureContactEnergy>(std::move(features), triangles, vertexCount,
-                                                                   setup.avatarContact, setup.featureReach));
+      if (!features.empty()) {
+        auto f = std::make_unique<AvatarFeatureContactEnergy>(std::move(features), triangles, vertexCount,
+                                                              setup.avatarContact, setup.featureReach);
+        featureContact = f.get();
+        out.push_back(std::move(f));
+      }
     }
   }
   if (setup.selfCollision && triangles.rows() > 0) {
@@ -31,8 +35,8 @@ std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(const ContactSe
     out.push_back(std::move(e));
   }
   if (setup.frictionCoefficient > 0.0 && (avatar || self)) {
-    out.push_back(std::make_unique<FrictionEnergy>(avatar, self,
-                                                   FrictionParameters{setup.frictionCoefficient, setup.frictionEpsV}));
+    const FrictionParameters friction{setup.frictionCoefficient, setup.frictionEpsV};
+    out.push_back(std::make_unique<FrictionEnergy>(avatar, self, friction, featureContact));
   }
   return out;
 }

@@ -16,8 +16,8 @@ double frictionF1(double y, double eps) {
 }
 
 FrictionEnergy::FrictionEnergy(const AvatarContactEnergy* avatar, const SelfContactEnergy* self,
-                               FrictionParameters params)
-    : m_avatar(avatar), m_self(self), m_params(params) {}
+                               FrictionParameters params, const AvatarFeatureContactEnergy* features)
+    : m_avatar(avatar), m_self(self), m_features(features), m_params(params) {}
 
 void FrictionEnergy::setLagged(std::vector<LaggedContact> contacts, const Eigen::VectorXd& start, double h) {
   m_contacts = std::move(contacts);
@@ -39,6 +39,7 @@ void FrictionEnergy::beginStep(const newton::StepContext& ctx) {
   };
   if (m_avatar) add(m_avatar->contacts(xn), m_avatar->parameters());
   if (m_self) add(m_self->contacts(xn), m_self->parameters());
+  if (m_features) add(m_features->contacts(xn), m_features->parameters());
   setLagged(std::move(contacts), xn, ctx.h);
 }
 

@@ -12,6 +12,7 @@
 //   s(x) = n . (sum_i w_i x_i - p),   E = penalty(s), with the avatar contact's penalty in s
 // (soft band 0 <= s < t with stiffness k, k x insideStiffnessFactor below 0). The pairs are fixed for the step, so
 // E is one quadratic-by-parts function of x and its Hessian k w_i w_j n n^T is exact and positive semi-definite.
+// Friction (friction.h) takes these pairs like the vertex contacts: the slip is that of the triangle's point.
 #include <Eigen/Core>
 #include <array>
 #include <vector>
@@ -46,6 +47,10 @@ class AvatarFeatureContactEnergy : public newton::Energy {
   void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
   void addHessian(const Eigen::VectorXd& x, newton::BlockMatrix& h) const override;
 
+  // Pairs within the thickness at x as 3-vertex stencils (the triangle's vertices and weights; distance s, normal
+  // the feature's). Used by friction for its normal forces and slips.
+  std::vector<ContactStencil> contacts(const Eigen::VectorXd& x) const;
+  const ContactParameters& parameters() const { return m_params; }
   int featureCount() const { return static_cast<int>(m_features.size()); }
   // Feature-triangle pairs held for the current step.
   int pairCount() const { return static_cast<int>(m_pairs.size()); }

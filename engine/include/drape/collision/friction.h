@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "drape/collision/avatar_contact.h"
+#include "drape/collision/avatar_feature_contact.h"
 #include "drape/collision/contact_stencil.h"
 #include "drape/collision/self_contact.h"
 #include "drape/newton/energy.h"
@@ -28,8 +29,9 @@ double frictionF1(double y, double eps);
 
 class FrictionEnergy : public newton::Energy {
  public:
-  // Either source may be null; they must outlive this energy (the factory keeps them in the same list).
-  FrictionEnergy(const AvatarContactEnergy* avatar, const SelfContactEnergy* self, FrictionParameters params);
+  // Any source may be null; they must outlive this energy (the factory keeps them in the same list).
+  FrictionEnergy(const AvatarContactEnergy* avatar, const SelfContactEnergy* self, FrictionParameters params,
+                 const AvatarFeatureContactEnergy* features = nullptr);
 
   std::string_view name() const override { return "friction"; }
   void beginStep(const newton::StepContext& ctx) override;
@@ -52,6 +54,7 @@ class FrictionEnergy : public newton::Energy {
 
   const AvatarContactEnergy* m_avatar = nullptr;
   const SelfContactEnergy* m_self = nullptr;
+  const AvatarFeatureContactEnergy* m_features = nullptr;
   FrictionParameters m_params;
   double m_eps = 1e-6;  // epsV * h, metres
   Eigen::VectorXd m_start;
