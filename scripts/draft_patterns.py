@@ -498,7 +498,7 @@ def crotch_point(p):
 
 
 def add_trousers(g, body):
-    gap = 1.5  # cm: crotch points this far from the centre line
+    gap = 0.4  # cm: crotch points this far from the centre line
     for back in (False, True):
         leg = trouser_leg(body, "left_back" if back else "left_front", back)
         if back:  # lower or raise the back crotch point so the inseams match the front's
