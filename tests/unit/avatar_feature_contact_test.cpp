@@ -75,7 +75,7 @@ TEST(AvatarFeatureContact, DerivativesMatchFiniteDifferences) {
   ContactParameters params;
   params.stiffness = 100.0;
   params.thickness = 0.004;
-  AvatarFeatureContactEnergy energy(features, triangles, 6, params, 0.01);
+  AvatarFeatureContactEnergy energy(features, triangles, params, 0.01);
   newton::StepContext ctx;
   ctx.previousPositions = &x;
   energy.beginStep(ctx);

@@ -55,11 +55,10 @@ std::vector<FeatureVertex> avatarFeatureVertices(const TriangleMesh& avatar, dou
 }
 
 AvatarFeatureContactEnergy::AvatarFeatureContactEnergy(std::vector<FeatureVertex> features,
-                                                       const Eigen::MatrixX3i& garmentTriangles, int vertexCount,
+                                                       const Eigen::MatrixX3i& garmentTriangles,
                                                        ContactParameters params, double reach)
     : m_features(std::move(features)),
       m_triangles(garmentTriangles),
-      m_vertexCount(vertexCount),
       m_params(params),
       m_penalty(params),
       m_reach(reach) {}

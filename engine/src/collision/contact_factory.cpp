@@ -21,8 +21,8 @@ std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(const ContactSe
     if (setup.featureRadius > 0.0 && triangles.rows() > 0) {
       std::vector<FeatureVertex> features = avatarFeatureVertices(setup.avatar->mesh(), setup.featureRadius);
       if (!features.empty()) {
-        auto f = std::make_unique<AvatarFeatureContactEnergy>(std::move(features), triangles, vertexCount,
-                                                              setup.avatarContact, setup.featureReach);
+        auto f = std::make_unique<AvatarFeatureContactEnergy>(std::move(features), triangles, setup.avatarContact,
+                                                              setup.featureReach);
         featureContact = f.get();
         out.push_back(std::move(f));
       }

@@ -17,9 +17,9 @@
 #include <array>
 #include <vector>
 
-#include "drape/geometry/triangle_mesh.h"
 #include "drape/collision/avatar_contact.h"
 #include "drape/collision/bvh.h"
+#include "drape/geometry/triangle_mesh.h"
 #include "drape/newton/energy.h"
 
 namespace drape::collision {
@@ -35,11 +35,11 @@ std::vector<FeatureVertex> avatarFeatureVertices(const TriangleMesh& avatar, dou
 
 class AvatarFeatureContactEnergy : public newton::Energy {
  public:
-  // garmentTriangles: |F| x 3 into the garment's vertexCount vertices. params: the avatar contact's (stiffness,
+  // garmentTriangles: |F| x 3 into the garment's vertices. params: the avatar contact's (stiffness,
   // thickness, insideStiffnessFactor). reach: metres behind a feature within which a triangle is still pushed out
   // (about half a garment edge: a triangle whose vertices are outside the body is not deeper than its sag).
   AvatarFeatureContactEnergy(std::vector<FeatureVertex> features, const Eigen::MatrixX3i& garmentTriangles,
-                             int vertexCount, ContactParameters params, double reach);
+                             ContactParameters params, double reach);
 
   std::string_view name() const override { return "avatar_feature_contact"; }
   void beginStep(const newton::StepContext& ctx) override;
@@ -65,7 +65,6 @@ class AvatarFeatureContactEnergy : public newton::Energy {
 
   std::vector<FeatureVertex> m_features;
   Eigen::MatrixX3i m_triangles;
-  int m_vertexCount = 0;
   ContactParameters m_params;
   AvatarPenalty m_penalty;
   double m_reach = 0.0;
