@@ -63,31 +63,46 @@ AvatarFeatureContactEnergy::AvatarFeatureContactEnergy(std::vector<FeatureVertex
       m_penalty(params),
       m_reach(reach) {}
 
-void AvatarFeatureContactEnergy::beginStep(const newton::StepContext& ctx) {
-  const Eigen::VectorXd& x = *ctx.previousPositions;
-  const int nt = static_cast<int>(m_triangles.rows());
-  auto corner = [&](int f, int k) -> Eigen::Vector3d { return x.segment<3>(3 * m_triangles(f, k)); };
+double featureRadiusFor(double meanEdge, double thickness) {
+  return std::min(meanEdge * meanEdge / (4.0 * thickness), kMaxFeatureRadius);
+}
+
+double meanEdgeLength(const Eigen::MatrixX3i& triangles, const std::function<Eigen::Vector3d(int)>& position) {
+  if (triangles.rows() == 0) return 0.0;
+  double length = 0.0;
+  for (int t = 0; t < triangles.rows(); ++t)
+    for (int k = 0; k < 3; ++k) length += (position(triangles(t, k)) - position(triangles(t, (k + 1) % 3))).norm();
+  return length / (3.0 * static_cast<double>(triangles.rows()));
+}
+
+std::vector<FeaturePair> findFeaturePairs(const std::vector<FeatureVertex>& features,
+                                          const Eigen::MatrixX3i& triangles,
+                                          const std::function<Eigen::Vector3d(int)>& position, double ahead,
+                                          double behind, Bvh& bvh) {
+  const int nt = static_cast<int>(triangles.rows());
+  std::vector<Eigen::Vector3d> corners(3 * static_cast<size_t>(nt));
   std::vector<BoundingBox> boxes(nt);
-  for (int f = 0; f < nt; ++f) boxes[f] = boxOf(corner(f, 0), corner(f, 1), corner(f, 2));
-  if (m_bvh.primitiveCount() == nt)
-    m_bvh.refit(boxes);
+  for (int f = 0; f < nt; ++f) {
+    for (int k = 0; k < 3; ++k) corners[3 * f + k] = position(triangles(f, k));
+    boxes[f] = boxOf(corners[3 * f], corners[3 * f + 1], corners[3 * f + 2]);
+  }
+  if (bvh.primitiveCount() == nt)
+    bvh.refit(boxes);
   else
-    m_bvh.build(boxes);
-  // A triangle is taken when the line through the feature along its normal crosses it between the reach behind
-  // the feature and twice the thickness in front (the step's motion is far below the thickness).
-  const double ahead = 2.0 * m_params.thickness, behind = m_reach;
-  tbb::enumerable_thread_specific<std::vector<Pair>> local;
-  tbb::parallel_for(tbb::blocked_range<int>(0, featureCount()), [&](const tbb::blocked_range<int>& range) {
+    bvh.build(boxes);
+  tbb::enumerable_thread_specific<std::vector<FeaturePair>> local;
+  tbb::parallel_for(tbb::blocked_range<int>(0, static_cast<int>(features.size())),
+                    [&](const tbb::blocked_range<int>& range) {
     auto& out = local.local();
     for (int i = range.begin(); i < range.end(); ++i) {
-      const FeatureVertex& fv = m_features[i];
-      BoundingBox reach = boxOf(fv.position - behind * fv.normal, fv.position + ahead * fv.normal);
-      Pair best;
+      const FeatureVertex& fv = features[i];
+      const BoundingBox reach = boxOf(fv.position - behind * fv.normal, fv.position + ahead * fv.normal);
+      FeaturePair best;
       double bestAlong = std::numeric_limits<double>::infinity();
-      m_bvh.forEachOverlap(reach, [&](int f) {
-        const Eigen::Vector3d a = corner(f, 0), b = corner(f, 1), c = corner(f, 2);
+      bvh.forEachOverlap(reach, [&](int f) {
+        const Eigen::Vector3d& a = corners[3 * f];
         // Line p + s n against the triangle's plane, in barycentric coordinates (Moller-Trumbore).
-        const Eigen::Vector3d e1 = b - a, e2 = c - a, h = fv.normal.cross(e2);
+        const Eigen::Vector3d e1 = corners[3 * f + 1] - a, e2 = corners[3 * f + 2] - a, h = fv.normal.cross(e2);
         const double det = e1.dot(h);
         if (std::abs(det) < 1e-18) return;
         const Eigen::Vector3d sv = fv.position - a;
@@ -99,18 +114,28 @@ void AvatarFeatureContactEnergy::beginStep(const newton::StepContext& ctx) {
         if (along < -behind || along > ahead || std::abs(along) >= std::abs(bestAlong)) return;
         bestAlong = along;
         best.feature = i;
-        best.vertices = {m_triangles(f, 0), m_triangles(f, 1), m_triangles(f, 2)};
+        best.vertices = {triangles(f, 0), triangles(f, 1), triangles(f, 2)};
         best.weights = Eigen::Vector3d(1.0 - u - w, u, w);
       });
       if (std::isfinite(bestAlong)) out.push_back(best);
     }
   });
-  m_pairs.clear();
-  for (auto& part : local) m_pairs.insert(m_pairs.end(), part.begin(), part.end());
-  std::sort(m_pairs.begin(), m_pairs.end(), [](const Pair& a, const Pair& b) { return a.feature < b.feature; });
+  std::vector<FeaturePair> pairs;
+  for (auto& part : local) pairs.insert(pairs.end(), part.begin(), part.end());
+  std::sort(pairs.begin(), pairs.end(), [](const FeaturePair& a, const FeaturePair& b) { return a.feature < b.feature; });
+  return pairs;
 }
 
-double AvatarFeatureContactEnergy::gap(const Pair& pair, const Eigen::VectorXd& x) const {
+void AvatarFeatureContactEnergy::beginStep(const newton::StepContext& ctx) {
+  const Eigen::VectorXd& x = *ctx.previousPositions;
+  // Triangles crossed between the reach behind the feature and twice the thickness in front (the step's motion
+  // is far below the thickness).
+  m_pairs = findFeaturePairs(
+      m_features, m_triangles, [&](int v) -> Eigen::Vector3d { return x.segment<3>(3 * v); },
+      2.0 * m_params.thickness, m_reach, m_bvh);
+}
+
+double AvatarFeatureContactEnergy::gap(const FeaturePair& pair, const Eigen::VectorXd& x) const {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   for (int k = 0; k < 3; ++k) point += pair.weights[k] * x.segment<3>(3 * pair.vertices[k]);
   const FeatureVertex& fv = m_features[pair.feature];
@@ -119,7 +144,7 @@ double AvatarFeatureContactEnergy::gap(const Pair& pair, const Eigen::VectorXd& 
 
 std::vector<ContactStencil> AvatarFeatureContactEnergy::contacts(const Eigen::VectorXd& x) const {
   std::vector<ContactStencil> out;
-  for (const Pair& pair : m_pairs) {
+  for (const FeaturePair& pair : m_pairs) {
     const double s = gap(pair, x);
     if (s >= m_params.thickness) continue;
     ContactStencil c;
@@ -137,7 +162,7 @@ std::vector<ContactStencil> AvatarFeatureContactEnergy::contacts(const Eigen::Ve
 
 double AvatarFeatureContactEnergy::value(const Eigen::VectorXd& x) const {
   double e = 0.0;
-  for (const Pair& pair : m_pairs) {
+  for (const FeaturePair& pair : m_pairs) {
     const double s = gap(pair, x);
     if (s < m_params.thickness) e += m_penalty.energy(s);
   }
@@ -145,7 +170,7 @@ double AvatarFeatureContactEnergy::value(const Eigen::VectorXd& x) const {
 }
 
 void AvatarFeatureContactEnergy::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
-  for (const Pair& pair : m_pairs) {
+  for (const FeaturePair& pair : m_pairs) {
     const double s = gap(pair, x);
     if (s >= m_params.thickness) continue;
     const Eigen::Vector3d push = m_penalty.force(s) * m_features[pair.feature].normal;  // -dE/ds n
@@ -154,7 +179,7 @@ void AvatarFeatureContactEnergy::addGradient(const Eigen::VectorXd& x, Eigen::Ve
 }
 
 void AvatarFeatureContactEnergy::addHessian(const Eigen::VectorXd& x, newton::BlockMatrix& h) const {
-  for (const Pair& pair : m_pairs) {
+  for (const FeaturePair& pair : m_pairs) {
     const double s = gap(pair, x);
     if (s >= m_params.thickness) continue;
     const Eigen::Vector3d& n = m_features[pair.feature].normal;

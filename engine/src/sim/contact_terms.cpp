@@ -4,16 +4,11 @@
 
 #include <algorithm>
 
+#include "drape/collision/avatar_feature_contact.h"
 #include "drape/collision/contact_factory.h"
 #include "sim/cloth_model_builder.h"
 
 namespace drape {
-namespace {
-
-// Metres: the bluntest avatar feature that pushes garment triangles (a bust point, a shoulder tip, an elbow).
-constexpr double kMaxFeatureRadius = 0.03;
-
-}  // namespace
 
 ContactTerms makeContactTerms(const Scene& scene, const Garment& garment,
                               std::shared_ptr<const collision::AvatarCollider> collider) {
@@ -25,19 +20,11 @@ ContactTerms makeContactTerms(const Scene& scene, const Garment& garment,
   setup.avatarContact.stiffness = scene.settings.number("contact.stiffness");
   setup.avatarContact.thickness = terms.thickness;
   if (setup.avatar && scene.settings.flag("contact.avatar_features") && garment.triangles.rows() > 0) {
-    // Over a cap of radius R a triangle of mean edge L sags about L^2 / (8 R) below its vertices, which the vertex
-    // contact keeps 0 to t (the thickness) off the body: features whose sag reaches t / 2 (R < L^2 / (4 t)) are
-    // watched, up to kMaxFeatureRadius: on a coarse mesh the criterion takes in the whole body (a 4 cm mesh: radii
-    // up to 20 cm), and blunt features holding every triangle slow the drape down without showing any better.
     // A triangle deeper behind a feature than half an edge is not one the body poked through.
-    const auto& x = garment.positions;
-    const auto& f = garment.triangles;
-    double length = 0.0;
-    for (int t = 0; t < f.rows(); ++t)
-      for (int k = 0; k < 3; ++k) length += (x.row(f(t, k)) - x.row(f(t, (k + 1) % 3))).norm();
-    length /= 3.0 * static_cast<double>(f.rows());
-    setup.featureRadius = std::min(length * length / (4.0 * terms.thickness), kMaxFeatureRadius);
-    setup.featureReach = 0.5 * length;
+    const double edge = collision::meanEdgeLength(
+        garment.triangles, [&](int v) -> Eigen::Vector3d { return garment.positions.row(v).transpose(); });
+    setup.featureRadius = collision::featureRadiusFor(edge, terms.thickness);
+    setup.featureReach = 0.5 * edge;
   }
   setup.selfCollision = scene.settings.flag("contact.self_collision");
   setup.selfContact = setup.avatarContact;

@@ -15,6 +15,7 @@
 // Friction (friction.h) takes these pairs like the vertex contacts: the slip is that of the triangle's point.
 #include <Eigen/Core>
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "drape/collision/avatar_contact.h"
@@ -32,6 +33,30 @@ struct FeatureVertex {
 // Avatar vertices standing above every neighbour along their area-weighted normal, with the smallest radius of
 // curvature towards a neighbour below maxRadius (metres). Vertices on an open boundary are not features.
 std::vector<FeatureVertex> avatarFeatureVertices(const TriangleMesh& avatar, double maxRadius);
+
+// The radius bound both solvers use for a garment of mean edge length meanEdge and contact thickness t (metres):
+// over a cap of radius R a triangle sags about meanEdge^2 / (8 R) below its vertices, which the vertex contact keeps
+// 0 to t off the body, so features whose sag reaches t / 2 are taken, up to kMaxFeatureRadius (on a coarse mesh
+// the bound would take in the whole body, and blunt features holding every triangle slow the drape down).
+constexpr double kMaxFeatureRadius = 0.03;
+double featureRadiusFor(double meanEdge, double thickness);
+// Mean edge length of a triangle mesh given by its triangles and a vertex position lookup.
+double meanEdgeLength(const Eigen::MatrixX3i& triangles, const std::function<Eigen::Vector3d(int)>& position);
+
+// A feature facing a garment triangle: the triangle's point at barycentric weights w lies on the feature's normal.
+struct FeaturePair {
+  int feature = 0;
+  std::array<int, 3> vertices{};
+  Eigen::Vector3d weights = Eigen::Vector3d::Zero();  // barycentric, sum 1
+};
+
+// For every feature, the garment triangle whose crossing with the feature's normal line lies nearest to it, between
+// `behind` metres behind it and `ahead` in front; position(v) gives garment vertex v. bvh: over the triangles, kept
+// by the caller between calls (built when its size differs, refitted otherwise).
+std::vector<FeaturePair> findFeaturePairs(const std::vector<FeatureVertex>& features,
+                                          const Eigen::MatrixX3i& triangles,
+                                          const std::function<Eigen::Vector3d(int)>& position, double ahead,
+                                          double behind, Bvh& bvh);
 
 class AvatarFeatureContactEnergy : public newton::Energy {
  public:
@@ -56,12 +81,7 @@ class AvatarFeatureContactEnergy : public newton::Energy {
   int pairCount() const { return static_cast<int>(m_pairs.size()); }
 
  private:
-  struct Pair {
-    int feature = 0;
-    std::array<int, 3> vertices{};
-    Eigen::Vector3d weights = Eigen::Vector3d::Zero();  // barycentric, sum 1
-  };
-  double gap(const Pair& pair, const Eigen::VectorXd& x) const;  // s(x)
+  double gap(const FeaturePair& pair, const Eigen::VectorXd& x) const;  // s(x)
 
   std::vector<FeatureVertex> m_features;
   Eigen::MatrixX3i m_triangles;
@@ -69,7 +89,7 @@ class AvatarFeatureContactEnergy : public newton::Energy {
   AvatarPenalty m_penalty;
   double m_reach = 0.0;
   Bvh m_bvh;  // over the garment's triangles at x_n, built once and refitted every step
-  std::vector<Pair> m_pairs;
+  std::vector<FeaturePair> m_pairs;
 };
 
 }  // namespace drape::collision
