@@ -34,7 +34,7 @@ struct FeatureVertex {
 // curvature towards a neighbour below maxRadius (metres). Vertices on an open boundary are not features.
 std::vector<FeatureVertex> avatarFeatureVertices(const TriangleMesh& avatar, double maxRadius);
 
-// The radius bound both solvers use for a garment of mean edge length meanEdge and contact thickness t (metres):
+// The radius bound for a garment of mean edge length meanEdge and contact thickness t (metres):
 // over a cap of radius R a triangle sags about meanEdge^2 / (8 R) below its vertices, which the vertex contact keeps
 // 0 to t off the body, so features whose sag reaches t / 2 are taken, up to kMaxFeatureRadius (on a coarse mesh
 // the bound would take in the whole body, and blunt features holding every triangle slow the drape down).
