@@ -54,36 +54,27 @@ std::vector<FeatureVertex> avatarFeatureVertices(const TriangleMesh& avatar, dou
   return out;
 }
 
-AvatarFeatureContactEnergy::AvatarFeatureContactEnergy(std::vector<FeatureVertex> features,
-                                                       const Eigen::MatrixX3i& garmentTriangles,
-                                                       ContactParameters params, double reach)
-    : m_features(std::move(features)),
-      m_triangles(garmentTriangles),
-      m_params(params),
-      m_penalty(params),
-      m_reach(reach) {}
-
 double featureRadiusFor(double meanEdge, double thickness) {
   return std::min(meanEdge * meanEdge / (4.0 * thickness), kMaxFeatureRadius);
 }
 
-double meanEdgeLength(const Eigen::MatrixX3i& triangles, const std::function<Eigen::Vector3d(int)>& position) {
+double meanEdgeLength(const Eigen::MatrixX3i& triangles, const Eigen::MatrixX3d& positions) {
   if (triangles.rows() == 0) return 0.0;
   double length = 0.0;
   for (int t = 0; t < triangles.rows(); ++t)
-    for (int k = 0; k < 3; ++k) length += (position(triangles(t, k)) - position(triangles(t, (k + 1) % 3))).norm();
+    for (int k = 0; k < 3; ++k)
+      length += (positions.row(triangles(t, k)) - positions.row(triangles(t, (k + 1) % 3))).norm();
   return length / (3.0 * static_cast<double>(triangles.rows()));
 }
 
 std::vector<FeaturePair> findFeaturePairs(const std::vector<FeatureVertex>& features,
-                                          const Eigen::MatrixX3i& triangles,
-                                          const std::function<Eigen::Vector3d(int)>& position, double ahead,
+                                          const Eigen::MatrixX3i& triangles, const Eigen::VectorXd& x, double ahead,
                                           double behind, Bvh& bvh) {
   const int nt = static_cast<int>(triangles.rows());
   std::vector<Eigen::Vector3d> corners(3 * static_cast<size_t>(nt));
   std::vector<BoundingBox> boxes(nt);
   for (int f = 0; f < nt; ++f) {
-    for (int k = 0; k < 3; ++k) corners[3 * f + k] = position(triangles(f, k));
+    for (int k = 0; k < 3; ++k) corners[3 * f + k] = x.segment<3>(3 * triangles(f, k));
     boxes[f] = boxOf(corners[3 * f], corners[3 * f + 1], corners[3 * f + 2]);
   }
   if (bvh.primitiveCount() == nt)
@@ -126,13 +117,20 @@ std::vector<FeaturePair> findFeaturePairs(const std::vector<FeatureVertex>& feat
   return pairs;
 }
 
+AvatarFeatureContactEnergy::AvatarFeatureContactEnergy(std::vector<FeatureVertex> features,
+                                                       const Eigen::MatrixX3i& garmentTriangles,
+                                                       ContactParameters params, double reach)
+    : m_features(std::move(features)),
+      m_triangles(garmentTriangles),
+      m_params(params),
+      m_penalty(params),
+      m_reach(reach) {}
+
 void AvatarFeatureContactEnergy::beginStep(const newton::StepContext& ctx) {
   const Eigen::VectorXd& x = *ctx.previousPositions;
   // Triangles crossed between the reach behind the feature and twice the thickness in front (the step's motion
   // is far below the thickness).
-  m_pairs = findFeaturePairs(
-      m_features, m_triangles, [&](int v) -> Eigen::Vector3d { return x.segment<3>(3 * v); },
-      2.0 * m_params.thickness, m_reach, m_bvh);
+  m_pairs = findFeaturePairs(m_features, m_triangles, x, 2.0 * m_params.thickness, m_reach, m_bvh);
 }
 
 double AvatarFeatureContactEnergy::gap(const FeaturePair& pair, const Eigen::VectorXd& x) const {

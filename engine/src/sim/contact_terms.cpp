@@ -21,8 +21,7 @@ ContactTerms makeContactTerms(const Scene& scene, const Garment& garment,
   setup.avatarContact.thickness = terms.thickness;
   if (setup.avatar && scene.settings.flag("contact.avatar_features") && garment.triangles.rows() > 0) {
     // A triangle deeper behind a feature than half an edge is not one the body poked through.
-    const double edge = collision::meanEdgeLength(
-        garment.triangles, [&](int v) -> Eigen::Vector3d { return garment.positions.row(v).transpose(); });
+    const double edge = collision::meanEdgeLength(garment.triangles, garment.positions);
     setup.featureRadius = collision::featureRadiusFor(edge, terms.thickness);
     setup.featureReach = 0.5 * edge;
   }

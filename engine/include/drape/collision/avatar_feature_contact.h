@@ -15,7 +15,6 @@
 // Friction (friction.h) takes these pairs like the vertex contacts: the slip is that of the triangle's point.
 #include <Eigen/Core>
 #include <array>
-#include <functional>
 #include <vector>
 
 #include "drape/collision/avatar_contact.h"
@@ -40,8 +39,8 @@ std::vector<FeatureVertex> avatarFeatureVertices(const TriangleMesh& avatar, dou
 // the bound would take in the whole body, and blunt features holding every triangle slow the drape down).
 constexpr double kMaxFeatureRadius = 0.03;
 double featureRadiusFor(double meanEdge, double thickness);
-// Mean edge length of a triangle mesh given by its triangles and a vertex position lookup.
-double meanEdgeLength(const Eigen::MatrixX3i& triangles, const std::function<Eigen::Vector3d(int)>& position);
+// Mean edge length of a triangle mesh (positions |V| x 3, metres); 0 without triangles.
+double meanEdgeLength(const Eigen::MatrixX3i& triangles, const Eigen::MatrixX3d& positions);
 
 // A feature facing a garment triangle: the triangle's point at barycentric weights w lies on the feature's normal.
 struct FeaturePair {
@@ -51,11 +50,10 @@ struct FeaturePair {
 };
 
 // For every feature, the garment triangle whose crossing with the feature's normal line lies nearest to it, between
-// `behind` metres behind it and `ahead` in front; position(v) gives garment vertex v. bvh: over the triangles, kept
+// `behind` metres behind it and `ahead` in front; x: garment positions, flat (3|V|). bvh: over the triangles, kept
 // by the caller between calls (built when its size differs, refitted otherwise).
 std::vector<FeaturePair> findFeaturePairs(const std::vector<FeatureVertex>& features,
-                                          const Eigen::MatrixX3i& triangles,
-                                          const std::function<Eigen::Vector3d(int)>& position, double ahead,
+                                          const Eigen::MatrixX3i& triangles, const Eigen::VectorXd& x, double ahead,
                                           double behind, Bvh& bvh);
 
 class AvatarFeatureContactEnergy : public newton::Energy {
