@@ -22,7 +22,7 @@ nlohmann::json stepRecord(const StepReport& r) {
           {"status", toString(r.status)}, {"iterations", r.iterations},
           {"cg_iterations", r.cgIterations}, {"splits", r.splits},
           {"residual", r.residual}, {"kinetic_energy_p99", r.kineticEnergy},
-          {"contacts", r.contacts}, {"max_strain", r.maxStrain},
+          {"contacts", r.contacts}, {"feature_contacts", r.featureContacts}, {"max_strain", r.maxStrain},
           {"wall_time_s", r.wallTime}};
   if (r.stage == "preview") {
     j["domains"] = r.domains;

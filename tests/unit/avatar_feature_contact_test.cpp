@@ -159,6 +159,7 @@ TEST(AvatarFeatureContact, ConeTipStaysUnderACoarseCloth) {
       << R"({"pattern": ")" << (test::assetsDir() / "patterns" / "tablecloth.json").generic_string()
       << R"(", "avatar": {"file": ")" << (dir / "cone.obj").generic_string()
       << R"(", "units": "m"}, "fabric": {"preset": "cotton_shirting"}})";
+  int featureContacts[2] = {-1, -1};  // in the last step's report, without and with the feature contact
   auto tipAboveCloth = [&](bool features) {
     SceneRequest request;
     request.input = dir / "cone_scene.json";
@@ -170,6 +171,7 @@ TEST(AvatarFeatureContact, ConeTipStaysUnderACoarseCloth) {
     EXPECT_EQ(std::find(terms.begin(), terms.end(), "avatar_feature_contact") != terms.end(), features);
     while (!sim.finished()) {
       const StepReport r = sim.step();
+      featureContacts[features] = r.featureContacts;
       EXPECT_NE(r.status, StepStatus::Diverged) << "t = " << sim.time();
       if (r.status == StepStatus::Diverged) break;
     }
@@ -180,6 +182,9 @@ TEST(AvatarFeatureContact, ConeTipStaysUnderACoarseCloth) {
   EXPECT_GT(without, 1e-3) << "tip above the cloth by " << without << " m";
   // With the feature contact the cloth passes over the tip (the inside penalty lets it in by well under 1 mm).
   EXPECT_LT(with, 5e-4) << "tip above the cloth by " << with << " m";
+  // The report counts the tip as a feature contact, and only when the term is on.
+  EXPECT_EQ(featureContacts[0], 0);
+  EXPECT_GE(featureContacts[1], 1);
 }
 
 // Depth (metres, > 0) by which avatar vertices with y in [yMin, yMax] lie outside the draped garment: along each

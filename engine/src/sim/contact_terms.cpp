@@ -39,9 +39,12 @@ ContactTerms makeContactTerms(const Scene& scene, const Garment& garment,
   for (const GarmentEdgeStitch& e : garment.edgeStitches) edgeStitches.push_back({e.vertex, e.a, e.b, e.t});
   terms.energies = collision::makeContactEnergies(setup, garment.vertexCount(), garment.triangles, garment.stitchPairs,
                                                   edgeStitches);
-  for (const auto& energy : terms.energies)
+  for (const auto& energy : terms.energies) {
     if (const auto* avatar = dynamic_cast<const collision::AvatarContactEnergy*>(energy.get()))
       terms.avatarEnergy = avatar;
+    if (const auto* features = dynamic_cast<const collision::AvatarFeatureContactEnergy*>(energy.get()))
+      terms.featureEnergy = features;
+  }
   return terms;
 }
 
@@ -60,6 +63,10 @@ Eigen::VectorXi contactMask(const ContactTerms& terms, const Eigen::VectorXd& x)
 
 int countContacts(const ContactTerms& terms, const Eigen::VectorXd& x) {
   return terms.avatarEnergy ? static_cast<int>(terms.avatarEnergy->contacts(x).size()) : 0;
+}
+
+int countFeatureContacts(const ContactTerms& terms, const Eigen::VectorXd& x) {
+  return terms.featureEnergy ? static_cast<int>(terms.featureEnergy->contacts(x).size()) : 0;
 }
 
 }  // namespace drape

@@ -7,6 +7,7 @@
 
 #include "drape/collision/avatar_collider.h"
 #include "drape/collision/avatar_contact.h"
+#include "drape/collision/avatar_feature_contact.h"
 #include "drape/garment/garment.h"
 #include "drape/newton/energy.h"
 #include "drape/scene/scene.h"
@@ -19,6 +20,8 @@ struct ContactTerms {
   std::vector<std::unique_ptr<newton::Energy>> energies;      // handed over to the solver
   // The avatar contact energy among them (owned by the solver once handed over), null without a collider.
   const collision::AvatarContactEnergy* avatarEnergy = nullptr;
+  // The avatar feature contact among them, null unless contact.avatar_features found features.
+  const collision::AvatarFeatureContactEnergy* featureEnergy = nullptr;
 };
 
 // collider: the scene's merged collider (null when it has none), shared with the preview solver.
@@ -31,5 +34,8 @@ Eigen::VectorXi contactMask(const ContactTerms& terms, const Eigen::VectorXd& x)
 // Garment vertices closer than the contact thickness at x, from the avatar contact energy's own (cached)
 // contact set; 0 without a collider.
 int countContacts(const ContactTerms& terms, const Eigen::VectorXd& x);
+// Avatar feature points closer than the contact thickness to the garment triangle they face at x (of the pairs
+// held for the current step); 0 without the feature contact.
+int countFeatureContacts(const ContactTerms& terms, const Eigen::VectorXd& x);
 
 }  // namespace drape

@@ -271,6 +271,7 @@ StepReport Simulation::step() {
     report.kineticEnergy = r.kineticPercentile;
     report.atRest = r.atRest;
     report.contacts = countContacts(m_solver->contact, m_solver->newton->positions());
+    report.featureContacts = countFeatureContacts(m_solver->contact, m_solver->newton->positions());
   }
   const Eigen::VectorXd stretch = triangleStretch(m_garment.rest, positions(), m_garment.triangles);
   report.maxStrain = stretch.size() ? stretch.maxCoeff() : 0.0;

@@ -38,6 +38,7 @@ struct StepReport {
   double residual = 0.0;
   double kineticEnergy = 0.0;  // 99th percentile of per-vertex kinetic energy, J
   int contacts = 0;            // garment vertices in contact with a collider
+  int featureContacts = 0;     // drape: avatar feature points pressing on a garment triangle (contact.avatar_features)
   double maxStrain = 0.0;      // largest triangle stretch (0.05 = 5%)
   double wallTime = 0.0;       // seconds spent in this step
   // Drape stage: wall seconds of this step in Hessian assembly, gradient (residual) evaluations, linear solves.
