@@ -269,6 +269,9 @@ void interactiveTable(const std::string& sceneFile, int steps, double cap, const
       {"dual CG, warm, halving", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; }},
       {"factor, fixed h", [](PreviewSettings& s) { s.contactSolve = K::Factor; s.maxHalvings = 0; }},
       {"factor, halving (default)", [](PreviewSettings& s) { s.contactSolve = K::Factor; }},
+      // Fewer L-G iterations at the paper's fixed step: fast, but the t-shirt slides off the body (BENCHMARKS).
+      {"fixed h, L-G cap 5", [](PreviewSettings& s) { s.maxIterations = 5; s.maxHalvings = 0; }},
+      {"fixed h, L-G cap 2", [](PreviewSettings& s) { s.maxIterations = 2; s.maxHalvings = 0; }},
       {"dual CG, warm, relax 0.1 s", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.relaxationTime = 0.1; }},
       {"dual CG, warm, relax, tol 1e-2", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.relaxationTime = 0.1; s.pcgTolerance = 1e-2; }},
       {"dual CG, warm, relax, tol 1e-2, hold", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; s.relaxationTime = 0.1; s.pcgTolerance = 1e-2; s.holdContactTargets = true; }},
