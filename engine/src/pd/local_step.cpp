@@ -108,7 +108,7 @@ void LocalStep::jacobi(const Eigen::MatrixX3d& x, std::vector<StrainTarget>& tar
   const int nt = m_system.triangleCount();
   targets.resize(nt);
   tbb::parallel_for(tbb::blocked_range<int>(0, nt, 2048), [&](const tbb::blocked_range<int>& r) {
-    for (int t = r.begin(); t < r.end(); ++t) targets[t] = m_system.project(t, x);
+    m_system.projectRange(x, r.begin(), r.end(), targets.data() + r.begin());
   });
 }
 

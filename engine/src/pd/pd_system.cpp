@@ -1,6 +1,6 @@
 #include "drape/pd/pd_system.h"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <algorithm>
 #include <map>
 #include <stdexcept>
@@ -22,105 +22,7 @@ double restArea(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen:
   return 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
 }
 
-// Any unit vector orthogonal to u (unit).
-Eigen::Vector3d anyOrthogonal(const Eigen::Vector3d& u) {
-  const Eigen::Vector3d axis = std::abs(u.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  return u.cross(axis).normalized();
-}
-
-// Relative determinant of F^T F (det / trace^2 = l_min l_max / (l_min + l_max)^2) above which the closed-form
-// polar decomposition is used: below it, cancellation in det would cost more than 1e-10 relative accuracy.
-constexpr double kClosedFormPolarMinDet = 1e-6;
-
-// Polar rotation of a thin F (3 x 2) by an eigen decomposition of F^T F; on a (nearly) collapsed F, where
-// rounding in F^T F would leave that rotation's columns visibly non-orthonormal (singular values more than 1e4
-// apart), an orthonormal frame from its longer column, the other completed in its plane.
-Eigen::Matrix<double, 3, 2> polarFrameNearCollapse(const Eigen::Matrix<double, 3, 2>& f) {
-  const Eigen::Matrix2d c = f.transpose() * f;
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
-  eig.computeDirect(c);
-  const Eigen::Vector2d lambda = eig.eigenvalues().cwiseMax(0.0);
-  const Eigen::Matrix2d v = eig.eigenvectors();
-  const double scale = std::max(c.trace(), 1e-300);
-  if (lambda.minCoeff() > 1e-8 * scale) {
-    const Eigen::Vector2d inv = lambda.cwiseSqrt().cwiseInverse();
-    return f * v * inv.asDiagonal() * v.transpose();
-  }
-  Eigen::Matrix<double, 3, 2> r;
-  const int longer = f.col(0).squaredNorm() >= f.col(1).squaredNorm() ? 0 : 1;
-  const int other = 1 - longer;
-  Eigen::Vector3d u = f.col(longer);
-  u = u.norm() > 1e-150 ? Eigen::Vector3d(u.normalized()) : Eigen::Vector3d::UnitX();
-  Eigen::Vector3d w = f.col(other) - u.dot(f.col(other)) * u;
-  w = w.norm() > 1e-12 * std::sqrt(scale) ? Eigen::Vector3d(w.normalized()) : anyOrthogonal(u);
-  w = (w - u.dot(w) * u).normalized();  // a second Gram-Schmidt pass: w came from a near-cancellation
-  r.col(longer) = u;
-  r.col(other) = w;
-  return r;
-}
-
-// Polar decomposition F = R S (R 3 x 2 with orthonormal columns, S symmetric 2 x 2). C = F^T F = [a b; b c]. Away
-// from collapse its square root has a closed form (Cayley-Hamilton for 2 x 2): S = (C + sqrt(det C) I) /
-// sqrt(tr C + 2 sqrt(det C)), and R = F S^-1. This runs for every triangle in every L-G iteration, at a fraction
-// of the cost of an eigen decomposition.
-void polarDecomposition(const Eigen::Matrix<double, 3, 2>& f, Eigen::Matrix<double, 3, 2>& r, Eigen::Matrix2d& s) {
-  const double a = f.col(0).squaredNorm(), b = f.col(0).dot(f.col(1)), c = f.col(1).squaredNorm();
-  const double det = a * c - b * b, trace = a + c;
-  if (det > kClosedFormPolarMinDet * trace * trace) {
-    const double root = std::sqrt(det), invT = 1.0 / std::sqrt(trace + 2.0 * root);
-    s << (a + root) * invT, b * invT, b * invT, (c + root) * invT;
-    Eigen::Matrix2d sInv;  // adj(S) / det S, det S = root
-    sInv << (c + root), -b, -b, (a + root);
-    sInv *= invT / root;
-    r = f * sInv;
-  } else {
-    r = polarFrameNearCollapse(f);
-    s = r.transpose() * f;
-  }
-}
-
-// S with its diagonal clamped into the stretch limits (and, when the stretch holds the shear, its off-diagonal
-// into +-shearLimit).
-Eigen::Matrix2d clampedStretch(const Eigen::Matrix2d& s, const StretchLimits& warp, const StretchLimits& weft,
-                               double shearLimit, bool stretchHoldsShear) {
-  Eigen::Matrix2d stretch = s;
-  stretch(0, 0) = std::clamp(s(0, 0), warp.min, warp.max);
-  stretch(1, 1) = std::clamp(s(1, 1), weft.min, weft.max);
-  if (stretchHoldsShear)
-    stretch(0, 1) = stretch(1, 0) = std::clamp(0.5 * (s(0, 1) + s(1, 0)), -shearLimit, shearLimit);
-  return stretch;
-}
-
 }  // namespace
-
-StrainProjection projectStrain(const Eigen::Matrix<double, 3, 2>& f, const StretchLimits& warp,
-                               const StretchLimits& weft, double shearLimit, bool stretchHoldsShear) {
-  Eigen::Matrix<double, 3, 2> r;
-  Eigen::Matrix2d s;
-  polarDecomposition(f, r, s);
-  Eigen::Matrix2d shear = s;
-  shear(0, 1) = shear(1, 0) = std::clamp(0.5 * (s(0, 1) + s(1, 0)), -shearLimit, shearLimit);
-  return {r * clampedStretch(s, warp, weft, shearLimit, stretchHoldsShear), r * shear};
-}
-
-Eigen::Matrix<double, 3, 2> combinedTarget(const StrainConstraint& sc, const StrainProjection& p) {
-  Eigen::Matrix<double, 3, 2> out;
-  for (int c = 0; c < 2; ++c) {
-    const double ws = c == 0 ? sc.weightWarp : sc.weightWeft;
-    const double total = ws + sc.weightShear;
-    out.col(c) = total > 0.0 ? Eigen::Vector3d((ws * p.stretch.col(c) + sc.weightShear * p.shear.col(c)) / total)
-                             : Eigen::Vector3d(p.stretch.col(c));
-  }
-  return out;
-}
-
-double strainEnergy(const StrainConstraint& sc, const Eigen::Matrix<double, 3, 2>& f, const StretchLimits& warp,
-                    const StretchLimits& weft, double shearLimit, bool stretchHoldsShear) {
-  const StrainProjection p = projectStrain(f, warp, weft, shearLimit, stretchHoldsShear);
-  const Eigen::Matrix<double, 3, 2> ds = f - p.stretch, dh = f - p.shear;
-  return 0.5 * (sc.weightWarp * ds.col(0).squaredNorm() + sc.weightWeft * ds.col(1).squaredNorm() +
-                sc.weightShear * dh.squaredNorm());
-}
 
 Eigen::Vector4d hingeVector(const Eigen::Vector2d& r0, const Eigen::Vector2d& r1, const Eigen::Vector2d& r2,
                             const Eigen::Vector2d& r3) {
@@ -329,15 +231,11 @@ Eigen::Matrix<double, 3, 2> PdSystem::project(int i, const Eigen::MatrixX3d& x) 
 }
 
 Eigen::Matrix<double, 3, 2> PdSystem::target(int i, const Eigen::Matrix<double, 3, 2>& f) const {
-  const StrainConstraint& sc = m_strains[i];
-  if (sc.weightShear != 0.0)
-    return combinedTarget(sc, projectStrain(f, m_warp, m_weft, m_shearLimit, m_stretchHoldsShear));
-  // No shear constraint (the stretch holds the shear, or a degenerate rest triangle): the target is the stretch
-  // projection alone (combinedTarget's weighted mean of one term).
-  Eigen::Matrix<double, 3, 2> r;
-  Eigen::Matrix2d s;
-  polarDecomposition(f, r, s);
-  return r * clampedStretch(s, m_warp, m_weft, m_shearLimit, m_stretchHoldsShear);
+  return strainTarget(m_strains[i], f, m_warp, m_weft, m_shearLimit, m_stretchHoldsShear);
+}
+
+void PdSystem::projectRange(const Eigen::MatrixX3d& x, int begin, int end, Eigen::Matrix<double, 3, 2>* out) const {
+  strainTargets(m_strains, x, begin, end, m_warp, m_weft, m_shearLimit, m_stretchHoldsShear, out);
 }
 
 double PdSystem::strainEnergy(const Eigen::MatrixX3d& x) const {
