@@ -24,7 +24,10 @@ std::filesystem::path temporaryPathFor(const std::filesystem::path& target) {
   static std::atomic<unsigned> counter{0};
   static thread_local std::mt19937_64 random(
       std::random_device{}() ^ static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count()));
-  std::string name = "." + target.filename().string() + ".tmp-";
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "." + string.
+  std::string name = ".";
+  name += target.filename().string();
+  name += ".tmp-";
 #ifdef DRAPE_HAVE_FSYNC
   name += std::to_string(::getpid()) + "-";
 #endif
