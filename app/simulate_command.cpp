@@ -26,6 +26,7 @@ nlohmann::json stepRecord(const StepReport& r) {
           {"wall_time_s", r.wallTime}};
   if (r.stage == "preview") {
     j["domains"] = r.domains;
+    j["sewn"] = r.sewn;
     j["collision_time_s"] = r.collisionTime;
     j["local_time_s"] = r.localTime;
     j["global_time_s"] = r.globalTime;

@@ -1,5 +1,6 @@
 // Preview (PD-DD) benchmarks, run by hand: `drape_pd_bench [--quick] [global|local|iteration|contact]` and
-// `drape_pd_bench interactive [SCENE] [--steps N] [--cap SECONDS] [--only VARIANT] [--verbose]`. Prints Markdown
+// `drape_pd_bench interactive [SCENE] [--from DRAPED.obj] [--steps N] [--cap SECONDS] [--only VARIANT] [--verbose]`
+// (--from: start from the vertex positions of an OBJ the garment was written to, e.g. by drape --simulate). Prints Markdown
 // tables for docs/BENCHMARKS.md: global solve DD vs monolithic CHOLMOD (pd-dd Fig. 9), Gauss-Seidel vs Jacobi
 // local step (Fig. 12/13), time per L-G iteration at 100k vertices, SD + PCG vs PCG for contact (Fig. 8), and the
 // interactive preview speed of a real garment on the mannequin (issue 6: >= 30 steps/s at 10k vertices).
@@ -226,13 +227,33 @@ struct Variant {
   std::function<void(PreviewSettings&)> apply;
 };
 
-void interactiveTable(const std::string& sceneFile, int steps, double cap, const std::string& only, bool verbose) {
+// Vertex positions (3|V|) of an OBJ written from the same garment (same vertex order).
+Eigen::VectorXd objPositions(const std::string& file, int vertexCount) {
+  FILE* f = std::fopen(file.c_str(), "r");
+  if (!f) throw std::runtime_error(file + ": cannot open");
+  std::vector<double> values;
+  char line[512];
+  while (std::fgets(line, sizeof line, f)) {
+    double a, b, c;
+    if (line[0] == 'v' && line[1] == ' ' && std::sscanf(line + 2, "%lf %lf %lf", &a, &b, &c) == 3)
+      values.insert(values.end(), {a, b, c});
+  }
+  std::fclose(f);
+  if (static_cast<int>(values.size()) != 3 * vertexCount)
+    throw std::runtime_error(file + ": " + std::to_string(values.size() / 3) + " vertices, the garment has " +
+                             std::to_string(vertexCount));
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
+
+void interactiveTable(const std::string& sceneFile, const std::string& from, int steps, double cap,
+                      const std::string& only, bool verbose) {
   SceneRequest request;
   request.input = sceneFile;
   const Scene scene = loadScene(request);
   const Garment garment = buildGarment(scene.pattern, meshingOptions(scene));
   const std::vector<int> pinned = resolvePins(scene, garment);
-  const newton::ClothModel model = buildClothModel(scene, garment, pinned);
+  newton::ClothModel model = buildClothModel(scene, garment, pinned);
+  if (!from.empty()) model.positions = objPositions(from, model.numVertices());
   const TriangleMesh colliderMesh = mergedColliders(scene);
   std::shared_ptr<const collision::AvatarCollider> collider;
   if (colliderMesh.triangleCount() > 0) collider = std::make_shared<const collision::AvatarCollider>(colliderMesh);
@@ -269,6 +290,10 @@ void interactiveTable(const std::string& sceneFile, int steps, double cap, const
       {"dual CG, warm, halving", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; }},
       {"factor, fixed h", [](PreviewSettings& s) { s.contactSolve = K::Factor; s.maxHalvings = 0; }},
       {"factor, halving (default)", [](PreviewSettings& s) { s.contactSolve = K::Factor; }},
+      // Stop 20's default: no sewn regime (contact targets re-projected every iteration, inertial friction load).
+      {"sewn, Gauss-Seidel local", [](PreviewSettings& s) { s.sewnLocalStep = LocalStepKind::GaussSeidel; }},
+      {"sewn_gap 0", [](PreviewSettings& s) { s.sewnGap = 0.0; }},
+      {"sewn_gap 0, fixed h", [](PreviewSettings& s) { s.sewnGap = 0.0; s.maxHalvings = 0; }},
       // Fewer L-G iterations at the paper's fixed step: fast, but the t-shirt slides off the body (BENCHMARKS).
       {"fixed h, L-G cap 5", [](PreviewSettings& s) { s.maxIterations = 5; s.maxHalvings = 0; }},
       {"fixed h, L-G cap 2", [](PreviewSettings& s) { s.maxIterations = 2; s.maxHalvings = 0; }},
@@ -282,8 +307,9 @@ void interactiveTable(const std::string& sceneFile, int steps, double cap, const
   };
 
   std::printf("| variant | vertices | steps | steps/s | sim s/s | ms/step | collision | local | global | contact solve | L-G it | SD it "
-              "| PCG it | contacts | churn | final inside | deepest mm |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+              "| PCG it | contacts | churn | final inside | deepest mm | sewn at step | steps/s once sewn | L-G it once sewn "
+              "| capped once sewn | mean move mm |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Variant& variant : variants) {
     if (!only.empty() && variant.name.find(only) == std::string::npos) continue;
     PreviewSettings s = base;
@@ -291,10 +317,13 @@ void interactiveTable(const std::string& sceneFile, int steps, double cap, const
     PreviewSolver solver(model, s, collider);
     double wall = 0, coll = 0, local = 0, global = 0, contactSolve = 0, simulated = 0;
     long lg = 0, sd = 0, pcg = 0, contacts = 0, churn = 0;
-    int done = 0;
+    int done = 0, sewnAt = -1, sewnSteps = 0, sewnCapped = 0;
+    double sewnWall = 0.0;
+    long sewnLg = 0;
     bool diverged = false;
     const auto t0 = Clock::now();
     Eigen::VectorXd previous = solver.positions();
+    const Eigen::VectorXd initial = solver.positions();
     while (done < steps && since(t0) < cap) {
       const PreviewReport r = solver.step();
       ++done;
@@ -309,6 +338,13 @@ void interactiveTable(const std::string& sceneFile, int steps, double cap, const
       pcg += r.pcgIterations;
       contacts += r.contacts;
       churn += r.contactChurn;
+      if (r.sewn && sewnAt < 0) sewnAt = done;
+      if (r.sewn && done > sewnAt) {  // the steps after the one that found the garment sewn
+        ++sewnSteps;
+        sewnWall += r.wallTime;
+        sewnLg += r.iterations;
+        sewnCapped += r.status == PreviewStatus::MaxIterations;
+      }
       if (verbose) {
         const Eigen::VectorXd& x = solver.positions();
         double maxMove = 0.0;
@@ -340,10 +376,17 @@ void interactiveTable(const std::string& sceneFile, int steps, double cap, const
         deepest = std::min(deepest, v);
       }
     const double n = std::max(done, 1);
-    std::printf("| %s | %d | %d%s | %.2f | %.3f | %.0f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.0f | %.0f | %d | %.1f |\n",
+    double meanMove = 0.0;
+    for (int v = 0; v < nv; ++v) meanMove += (solver.positions().segment<3>(3 * v) - initial.segment<3>(3 * v)).norm();
+    meanMove /= nv;
+    char sewnColumns[160] = "- | - | - | -";
+    if (sewnSteps > 0)
+      std::snprintf(sewnColumns, sizeof sewnColumns, "%d | %.1f | %.2f | %d", sewnAt, sewnSteps / sewnWall,
+                    static_cast<double>(sewnLg) / sewnSteps, sewnCapped);
+    std::printf("| %s | %d | %d%s | %.2f | %.3f | %.0f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.0f | %.0f | %d | %.1f | %s | %.1f |\n",
                 variant.name.c_str(), nv, done, diverged ? " (diverged)" : "", done / wall, simulated / wall, 1e3 * wall / n,
                 1e3 * coll / n, 1e3 * local / n, 1e3 * global / n, 1e3 * contactSolve / n, lg / n, sd / n, pcg / n,
-                contacts / n, churn / n, deep, 1e3 * deepest);
+                contacts / n, churn / n, deep, 1e3 * deepest, sewnColumns, 1e3 * meanMove);
     std::fflush(stdout);
   }
 }
@@ -354,7 +397,7 @@ int main(int argc, char** argv) {
   bool quick = false;
   std::string only;
   if (argc > 1 && std::strcmp(argv[1], "interactive") == 0) {
-    std::string scene = "bench/scenes/tshirt_female.json", variant;
+    std::string scene = "bench/scenes/tshirt_female.json", variant, from;
     int steps = 60;
     double cap = 300.0;
     bool verbose = false;
@@ -364,10 +407,11 @@ int main(int argc, char** argv) {
       else if (a == "--cap" && i + 1 < argc) cap = std::atof(argv[++i]);
       else if (a == "--only" && i + 1 < argc) variant = argv[++i];
       else if (a == "--verbose") verbose = true;
+      else if (a == "--from" && i + 1 < argc) from = argv[++i];
       else scene = a;
     }
     try {
-      interactiveTable(scene, steps, cap, variant, verbose);
+      interactiveTable(scene, from, steps, cap, variant, verbose);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "drape_pd_bench: %s\n", e.what());
       return 1;

@@ -224,6 +224,42 @@ TEST(PdContactTarget, FrictionLoadIsTheInertialPenetration) {
   EXPECT_EQ(st.staticFriction, 1);
 }
 
+// A held target (holdTargets, Reproject targets) is reused without a new lookup while the collision-free position
+// presses on the body (behind the plane through the target along its contact normal), let go once the position is
+// in front of that plane, and taken up again when it comes back within the step.
+TEST(PdContactTarget, HeldTargetIsLetGoInFrontOfItsPlane) {
+  AvatarContactOptions o;
+  o.holdTargets = true;
+  o.ccd = false;
+  AvatarContacts contacts(slab(), o);
+  const Eigen::Vector3d start(0.1, 0.003, 0.2);
+  contacts.beginStep(start.transpose(), start.transpose(), {0});
+  const auto at = [&](const Eigen::Vector3d& x) {
+    ContactAccumulator acc(1);
+    contacts.addConstraints(x.transpose(), acc);
+    return acc.merged();
+  };
+  const ContactSet first = at(Eigen::Vector3d(0.1, -0.002, 0.2));
+  ASSERT_EQ(first.size(), 1);
+  EXPECT_LT((first.targets.row(0) - Eigen::RowVector3d(0.1, o.thickness, 0.2)).norm(), 1e-12);
+  // Deeper and slid sideways: still the first target (a fresh projection would be at x = 0.13).
+  const ContactSet deeper = at(Eigen::Vector3d(0.13, -0.01, 0.2));
+  ASSERT_EQ(deeper.size(), 1);
+  EXPECT_EQ(deeper.targets.row(0), first.targets.row(0));
+  // Within the thickness but behind the held plane: held.
+  EXPECT_EQ(at(Eigen::Vector3d(0.1, 0.5 * o.thickness, 0.2)).size(), 1);
+  // In front of the plane: let go.
+  EXPECT_EQ(at(Eigen::Vector3d(0.1, o.thickness + 1e-4, 0.2)).size(), 0);
+  const ContactSet back = at(Eigen::Vector3d(0.2, -0.001, 0.1));
+  ASSERT_EQ(back.size(), 1);
+  EXPECT_EQ(back.targets.row(0), first.targets.row(0));
+  // A new step forgets it: the fresh projection of the new position.
+  contacts.beginStep(start.transpose(), start.transpose(), {0});
+  const ContactSet next = at(Eigen::Vector3d(0.2, -0.001, 0.1));
+  ASSERT_EQ(next.size(), 1);
+  EXPECT_LT((next.targets.row(0) - Eigen::RowVector3d(0.2, o.thickness, 0.1)).norm(), 1e-12);
+}
+
 // ---------------------------------------------------------------------------------------------------------------
 // 2. L-G convergence: a cloth dropped into the valley's 90-degree crease.
 
@@ -251,6 +287,8 @@ TEST(PdContactTarget, ClothInACreaseConvergesWellBelowTheIterationCap) {
   // the shear mode's slow L-G convergence keeps both kinds of target near any cap (measured: 53 vs 60 iterations
   // per step at a cap of 60, 91 vs 99 at 100), which hides what this test compares.
   s.shearModel = ShearModelKind::Stretch;
+  // The sewn switch (a garment without stitches counts as sewn after 0.1 s) would hold the targets of both kinds.
+  s.sewnGap = 0.0;
   const int steps = 120;
   const SettleResult now = settle(model, s, collider, steps);
   const SettleResult before = settle(model, firstVersion(s), collider, steps);
@@ -294,6 +332,8 @@ TEST(PdContactTarget, FrictionDoesNotLockTheLandingStretch) {
   // neither friction load locks a stretch (measured: warp/weft edges p95 2.9 % vs 3.0 %; all edges 10 %, the
   // diagonals measuring the shear).
   s.shearModel = ShearModelKind::Stretch;
+  // The sewn switch (a garment without stitches counts as sewn after 0.1 s) would set both to the collision-free load.
+  s.sewnGap = 0.0;
   const int steps = 100;
   const SettleResult now = settle(model, s, collider, steps);
   const SettleResult before = settle(model, firstVersion(s), collider, steps);

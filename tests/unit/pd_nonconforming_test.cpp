@@ -277,5 +277,46 @@ TEST(PdNonconforming, PreviewClosesTheSeam) {
   }
 }
 
+// The sewn switch (PreviewSettings::sewnGap, sewnTime): reported from the first converged step after every stitch
+// gap has stayed below sewnGap for sewnTime, for good; never with sewnGap 0.
+TEST(PdNonconforming, SeamCountsAsSewnOnceItStayedClosed) {
+  SeamedCloth sc = seamedCloth(16, 19, 11, 14, 0.03);
+  newton::ClothModel& m = sc.model;
+  m.pinTargets = {m.positions.segment<3>(3 * m.pinned[0]),
+                  m.positions.segment<3>(3 * m.pinned[1]) - Eigen::Vector3d(0.03, 0.0, 0.0)};
+  PreviewSettings s;
+  s.domains = 4;
+  s.relaxationTime = 0.1;
+  s.sewnGap = 1e-3;
+  s.sewnTime = 0.05;
+  PreviewSolver solver(m, s);
+  double closedSince = -1.0, sewnAt = -1.0;
+  for (int i = 0; i < 60; ++i) {
+    const double before = solver.time();
+    const PreviewReport r = solver.step();
+    ASSERT_NE(r.status, PreviewStatus::Diverged) << "step " << i;
+    const double gap = maxSeamGap(m, solver.positions());
+    if (gap >= s.sewnGap) closedSince = -1.0;
+    else if (closedSince < 0.0) closedSince = solver.time();
+    if (sewnAt >= 0.0) {
+      EXPECT_TRUE(r.sewn) << "step " << i << ": sewn is for good";
+      continue;
+    }
+    if (!r.sewn) continue;
+    sewnAt = solver.time();
+    EXPECT_EQ(r.status, PreviewStatus::Converged);
+    // The gaps were closed at the end of every step since closedSince, sewnTime before this one's end.
+    ASSERT_GE(closedSince, 0.0) << "sewn with a gap of " << gap << " m";
+    EXPECT_GE(solver.time() - closedSince + 1e-12, s.sewnTime) << "closed at " << closedSince << ", sewn at " << before;
+  }
+  ASSERT_GE(sewnAt, 0.0) << "never sewn; the seam gap ends at " << maxSeamGap(m, solver.positions());
+  EXPECT_LT(sewnAt, 0.3);
+
+  s.sewnGap = 0.0;
+  PreviewSolver never(m, s);
+  for (int i = 0; i < 60; ++i) EXPECT_FALSE(never.step().sewn) << "step " << i;
+  EXPECT_LT(maxSeamGap(m, never.positions()), 1e-3);  // closed all the same
+}
+
 }  // namespace
 }  // namespace drape::pd

@@ -5,6 +5,9 @@
 // body. Runs ~1-2 min.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+
 #include "drape/collision/avatar_collider.h"
 #include "drape/scene/scene.h"
 #include "drape/sim/simulation.h"
@@ -46,6 +49,74 @@ TEST(PdTshirtPreview, DefaultSceneStaysOnTheBodyAndHandsOverToTheDrape) {
   // The full pipeline continues in the Newton drape and does not diverge there.
   for (int i = 0; i < 200 && !sim.finished(); ++i) ASSERT_NE(sim.step().status, StepStatus::Diverged);
   EXPECT_EQ(sim.stage(), "drape");
+}
+
+// Once sewn (solver.preview.sewn_gap), the preview holds contact targets within a step and lets the cloth's tension
+// load friction: the steps converge at the paper's 1/120 s again, and the shirt stays where it is. Before (stop 20,
+// and with sewn_gap 0 from the same sewn state), 1/120 s steps hit the L-G cap and the shirt slid 4-9 cm down the
+// body within 0.5 s (docs/BENCHMARKS.md).
+TEST(PdTshirtPreview, SewnShirtConvergesAtThePapersStepAndStaysPut) {
+  SceneRequest request;
+  request.input = assetsDir() / "scenes" / "default.json";
+  request.overrides = {{"solver.stage", "preview"}, {"solver.max_sim_time", "3"}};
+  Simulation sim(loadScene(request));
+  const collision::AvatarCollider body(mergedColliders(sim.scene()));
+  double sewnAt = -1.0;
+  while (!sim.finished()) {
+    const StepReport r = sim.step();
+    ASSERT_NE(r.status, StepStatus::Diverged) << "t = " << r.time;
+    if (r.sewn) {
+      sewnAt = r.time;
+      break;
+    }
+  }
+  ASSERT_GE(sewnAt, 0.0) << "the t-shirt never counted as sewn";
+  EXPECT_LT(sewnAt, 1.0);
+  const Eigen::MatrixX3d start = sim.positions();
+  const double paperStep = 1.0 / 120.0;
+  int steps = 0, atPaperStep = 0, capped = 0, late = 0, lateAtPaperStep = 0;
+  long iterations = 0;
+  double time = sewnAt, worstStrain = 0.0;
+  while (!sim.finished() && time < sewnAt + 0.5) {
+    const StepReport r = sim.step();
+    ASSERT_NE(r.status, StepStatus::Diverged) << "t = " << r.time;
+    EXPECT_TRUE(r.sewn);
+    time = r.time;
+    ++steps;
+    iterations += r.iterations;
+    const bool paper = std::abs(r.h - paperStep) < 1e-12;
+    atPaperStep += paper;
+    if (time > sewnAt + 0.25) {
+      ++late;
+      lateAtPaperStep += paper;
+    }
+    capped += r.status == StepStatus::MaxIterations;
+    worstStrain = std::max(worstStrain, r.maxStrain);
+  }
+  const Eigen::MatrixX3d x = sim.positions();
+  ASSERT_TRUE(x.allFinite());
+  const double meanDrop = (start.col(1) - x.col(1)).mean();
+  const double meanMove = (x - start).rowwise().norm().mean();
+  std::printf("[ PdTshirtPreview ] sewn at t = %.3f s; then %d steps to t = %.3f s: %d at 1/120 s, %d capped, %.2f "
+              "L-G iterations per step; mean move %.1f mm, mean drop %.1f mm, largest stretch %.0f %%\n", sewnAt, steps,
+              time, atPaperStep, capped, static_cast<double>(iterations) / std::max(steps, 1), 1e3 * meanMove,
+              1e3 * meanDrop, 100.0 * worstStrain);
+  EXPECT_GE(steps, 20);
+  // The assembly's halved steps grow back (grow_after_steps converged steps per doubling); then all are at 1/120 s.
+  EXPECT_GT(late, 20);
+  EXPECT_EQ(lateAtPaperStep, late);
+  EXPECT_LE(capped, steps / 20);
+  EXPECT_LT(static_cast<double>(iterations) / steps, 5.0);
+  EXPECT_LT(meanDrop, 0.015);
+  EXPECT_LT(worstStrain, 0.6);
+  int inside = 0, away = 0;
+  for (int v = 0; v < x.rows(); ++v) {
+    const double d = body.signedDistance(x.row(v).transpose());
+    inside += d < -sim.contactThickness();
+    away += d > 0.1;
+  }
+  EXPECT_EQ(inside, 0);
+  EXPECT_EQ(away, 0);
 }
 
 }  // namespace drape::test

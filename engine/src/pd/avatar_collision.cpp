@@ -53,6 +53,7 @@ void AvatarContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matri
   });
   if (m_options.holdTargets) {
     m_held.resize(nf);
+    m_heldNormal.resize(nf);
     m_heldKind.assign(nf, 0);
   }
   m_candidates.clear();
@@ -83,7 +84,7 @@ int AvatarContacts::firstCrossing(const Eigen::Vector3d& p0, const Eigen::Vector
 }
 
 char AvatarContacts::constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& z,
-                               Eigen::Vector3d& target, int& hint) const {
+                               Eigen::Vector3d& target, Eigen::Vector3d& normal, int& hint) const {
   const double thickness = m_options.thickness;
   const double reach = thickness + m_options.margin;
   collision::SurfacePoint sp;
@@ -110,6 +111,7 @@ char AvatarContacts::constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d&
   } else {
     return 0;
   }
+  normal = n;
   const double correction = (target - p1).dot(n);
   const double load = m_options.frictionLoad == FrictionLoadKind::Inertial ? (target - z).dot(n) : correction;
   if (correction > 0.0 && applyFriction(p0, n, load, target)) kind |= 4;
@@ -231,15 +233,25 @@ AvatarContactStats AvatarContacts::addConstraints(const Eigen::MatrixX3d& xFree,
   std::vector<Eigen::Vector3d> target(nw);
   tbb::parallel_for(0, nw, [&](int i) {
     const int d = watched[i];
-    kind[i] = planes ? constrainToPlanes(d, xFree.row(d).transpose(), target[i], added[i])
-                     : constrain(m_freeStart.row(d).transpose(), xFree.row(d).transpose(),
-                                 m_freePredicted.row(d).transpose(), target[i], m_hint[d]);
+    const Eigen::Vector3d x = xFree.row(d).transpose();
+    if (m_options.holdTargets && !planes && m_heldKind[d]) {  // held (header): no lookup
+      if ((x - m_held[d]).dot(m_heldNormal[d]) < 0.0) {
+        target[i] = m_held[d];
+        kind[i] = m_heldKind[d];
+      }
+      return;
+    }
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    kind[i] = planes ? constrainToPlanes(d, x, target[i], added[i])
+                     : constrain(m_freeStart.row(d).transpose(), x, m_freePredicted.row(d).transpose(), target[i],
+                                 normal, m_hint[d]);
     if (!m_options.holdTargets || !kind[i]) return;
-    if (m_heldKind[d]) {
+    if (m_heldKind[d]) {  // StepPlanes
       target[i] = m_held[d];
       kind[i] = m_heldKind[d];
     } else {
       m_held[d] = target[i];
+      m_heldNormal[d] = normal;
       m_heldKind[d] = kind[i];
     }
   });

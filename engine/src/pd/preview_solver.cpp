@@ -48,6 +48,15 @@ void addWork(const PreviewReport& earlier, PreviewReport& report) {
   report.globalTime += earlier.globalTime;
 }
 
+// Largest distance between the two sides of a stitch (vertex pairs and vertex-to-edge points), metres.
+double largestStitchGap(const newton::ClothModel& model, const Eigen::MatrixX3d& x) {
+  double gap = 0.0;
+  for (const auto& [a, b] : model.stitches) gap = std::max(gap, (x.row(a) - x.row(b)).norm());
+  for (const newton::EdgeStitch& e : model.edgeStitches)
+    gap = std::max(gap, (x.row(e.vertex) - (1.0 - e.t) * x.row(e.a) - e.t * x.row(e.b)).norm());
+  return gap;
+}
+
 }  // namespace
 
 const char* toString(PreviewStatus status) {
@@ -76,6 +85,8 @@ struct PreviewSolver::Impl {
   std::vector<Level> levels;
   int level = 0;
   int convergedInARow = 0;  // steps converged at the current level since it was entered
+  bool sewn = false;        // settings.sewnGap held for settings.sewnTime (latched)
+  double closedSince = -1.0;  // scene time since which every stitch gap is below settings.sewnGap; -1: not now
   PdSystem* system = nullptr;  // of the current level
   GlobalSolver* global = nullptr;
   LocalStep* local = nullptr;
@@ -245,6 +256,20 @@ PreviewReport PreviewSolver::Impl::step() {
   } else {
     convergedInARow = 0;
   }
+  const bool kept = total.status == PreviewStatus::Converged || total.status == PreviewStatus::MaxIterations;
+  if (!sewn && kept && settings.sewnGap > 0.0) {
+    if (largestStitchGap(model, x) >= settings.sewnGap) closedSince = -1.0;
+    else if (closedSince < 0.0) closedSince = time;
+  }
+  if (!sewn && closedSince >= 0.0 && time - closedSince >= settings.sewnTime &&
+      total.status == PreviewStatus::Converged) {
+    sewn = true;
+    if (avatar) {
+      avatar->setHoldTargets(true);
+      avatar->setFrictionLoad(FrictionLoadKind::CollisionFree);
+    }
+  }
+  total.sewn = sewn;
   toFlat(x, flatX);
   toFlat(v, flatV);
   total.wallTime = seconds(start, Clock::now());
@@ -297,7 +322,8 @@ PreviewReport PreviewSolver::Impl::attempt() {
 
   x = z;
   Eigen::MatrixX3d b;
-  if (settings.localStep == LocalStepKind::GaussSeidel) {
+  const LocalStepKind localKind = sewn ? settings.sewnLocalStep : settings.localStep;
+  if (localKind == LocalStepKind::GaussSeidel) {
     const auto t0 = Clock::now();
     local->jacobi(x, targets);
     b = sys.rhs(z, targets);
@@ -312,7 +338,7 @@ PreviewReport PreviewSolver::Impl::attempt() {
       break;
     }
     auto t0 = Clock::now();
-    if (settings.localStep == LocalStepKind::GaussSeidel)
+    if (localKind == LocalStepKind::GaussSeidel)
       local->gaussSeidel(x, b, it, targets);
     else
       local->jacobi(x, targets);

@@ -54,6 +54,13 @@ const std::vector<SettingSpec>& Settings::specs() {
        1e-12, 1},
       {"solver.preview.hold_contact_targets", T::Boolean, "false", "",
        "avatar contact targets fixed within a step once found"},
+      {"solver.preview.sewn_gap", T::Number, "0.0005", "m",
+       "once every stitch gap is below this, contact targets are held within a step and friction takes the cloth's "
+       "tension as load, once they have stayed so for sewn_time (0: never)", 0, 1},
+      {"solver.preview.sewn_time", T::Number, "0.1", "s",
+       "how long every stitch gap must stay below sewn_gap before the garment counts as sewn", 0, 1e4},
+      {"solver.preview.sewn_local_step", T::Choice, "jacobi", "", "local step once the garment is sewn", -1e300,
+       1e300, {"gauss_seidel", "jacobi"}},
       {"solver.preview.contact_targets", T::Choice, "reproject", "",
        "avatar contact targets: half-spaces fixed per step, or re-projected every L-G iteration", -1e300, 1e300,
        {"reproject", "step_planes"}},

@@ -123,6 +123,10 @@ pd::PreviewSettings previewSettingsFrom(const Scene& scene) {
                                                      : pd::ContactSolveKind::DualCgThenPcg;
   p.pcgTolerance = s.number("solver.preview.pcg_tolerance");
   p.holdContactTargets = s.flag("solver.preview.hold_contact_targets");
+  p.sewnGap = s.number("solver.preview.sewn_gap");
+  p.sewnTime = s.number("solver.preview.sewn_time");
+  p.sewnLocalStep = s.text("solver.preview.sewn_local_step") == "gauss_seidel" ? pd::LocalStepKind::GaussSeidel
+                                                                               : pd::LocalStepKind::Jacobi;
   p.contactTargets = s.text("solver.preview.contact_targets") == "step_planes" ? pd::ContactTargetKind::StepPlanes
                                                                                : pd::ContactTargetKind::Reproject;
   p.frictionLoad = s.text("solver.preview.friction_load") == "collision_free" ? pd::FrictionLoadKind::CollisionFree

@@ -218,6 +218,7 @@ StepReport Simulation::step() {
     report.residual = r.residual;
     report.contacts = r.contacts;
     report.domains = r.domains;
+    report.sewn = r.sewn;
     report.collisionTime = r.collisionTime;
     report.localTime = r.localTime;
     report.globalTime = r.globalTime;

@@ -47,7 +47,9 @@ struct AvatarContactOptions {
   // Keep, within a step, the target a DOF got when it was first found in contact while it stays in contact:
   // a contact target is a discontinuous function of the position (closest triangle, CCD crossing, static or
   // kinetic friction), and re-projecting it every L-G iteration lets vertices on creases of the body cycle
-  // between targets centimetres apart, so the L-G iterations never meet their tolerance.
+  // between targets centimetres apart, so the L-G iterations never meet their tolerance. Reproject mode: a held
+  // DOF is not looked up again in the step; it stays in contact while its collision-free position is behind the
+  // plane through its target with the contact normal (it is pressed onto the body), and is let go otherwise.
   bool holdTargets = false;
   ContactTargetKind targets = ContactTargetKind::Reproject;
   FrictionLoadKind frictionLoad = FrictionLoadKind::Inertial;
@@ -83,6 +85,9 @@ class AvatarContacts {
   AvatarContactStats addConstraints(const Eigen::MatrixX3d& xFree, ContactAccumulator& acc);
 
   const AvatarContactOptions& options() const { return m_options; }
+  // From the next step on (the preview switches both once the garment is sewn, preview_settings.h sewnGap).
+  void setHoldTargets(bool hold) { m_options.holdTargets = hold; }
+  void setFrictionLoad(FrictionLoadKind load) { m_options.frictionLoad = load; }
 
  private:
   static constexpr int kMaxPlanes = 3;
@@ -98,10 +103,10 @@ class AvatarContacts {
 
   // One watched DOF: a candidate of beginStep or a DOF that moved far (addConstraints). kind: 0 none,
   // 1 proximity, 2 CCD, +4 held by static friction. Reproject mode; p0 start, p1 collision-free position, z
-  // inertial prediction.
+  // inertial prediction; normal: the unit contact normal the target was pushed along.
   // hint: the DOF's last closest collider triangle (updated; see AvatarCollider::closest).
   char constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& z,
-                 Eigen::Vector3d& target, int& hint) const;
+                 Eigen::Vector3d& target, Eigen::Vector3d& normal, int& hint) const;
   // StepPlanes mode: the same for free DOF d at collision-free position x (adds to m_planes[d]); added: set to
   // the number of half-spaces added.
   char constrainToPlanes(int d, const Eigen::Vector3d& x, Eigen::Vector3d& target, int& added);
@@ -121,6 +126,7 @@ class AvatarContacts {
   std::vector<float> m_bound;                  // per free DOF: lower bound of its start distance to the collider
   std::vector<int> m_hint;                     // per free DOF: its last closest collider triangle, -1 = none yet
   std::vector<Eigen::Vector3d> m_held;         // per free DOF: target held in this step (holdTargets)
+  std::vector<Eigen::Vector3d> m_heldNormal;   // per free DOF: the held target's contact normal (Reproject)
   std::vector<char> m_heldKind;                // per free DOF: its kind, 0 = none held
   std::vector<StepPlanes> m_planes;            // per free DOF: half-spaces of this step (StepPlanes)
 };

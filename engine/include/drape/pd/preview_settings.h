@@ -77,6 +77,21 @@ struct PreviewSettings {
   bool contactWarmStart = true;     // start each collision-aware solve from the last contact forces (false: from 0)
   bool ccd = true;                  // vertex paths of the step tested against the avatar triangles (7.3)
   bool holdContactTargets = false;  // avatar contact targets fixed within a step once found (avatar_collision.h)
+  // Once every stitch gap has stayed below sewnGap (metres) for sewnTime (seconds of scene time, ending with a
+  // converged step), the garment counts as sewn, for good: from the next step on, avatar contact targets are held
+  // within a step (holdContactTargets) and friction is bounded by the collision-free load
+  // (FrictionLoadKind::CollisionFree, the cloth's tension included). While the seams close, the stitches' pull is
+  // no real tension: it would pin stretched panels by friction where they are (switched as soon as the gaps close,
+  // the default scene kept a 91 % stretch). Once sewn, the tension is real; the inertial load alone lets the
+  // garment slide down the body, and unheld targets cycle on body creases, so that the paper's fixed step never
+  // converged (issue 6, docs/BENCHMARKS.md). A garment without stitches is sewn after sewnTime. sewnGap 0: never
+  // (both settings stay as given).
+  double sewnGap = 5e-4;
+  double sewnTime = 0.1;
+  // The local step once sewn (localStep before). Sewn, both kinds take the same L-G iterations per step (2.2-2.7 on
+  // the 10k-vertex t-shirt) and Jacobi's batched projections cost a tenth of Gauss-Seidel's sweeps; while the seams
+  // close, Gauss-Seidel needs a third of Jacobi's iterations (docs/BENCHMARKS.md).
+  LocalStepKind sewnLocalStep = LocalStepKind::Jacobi;
   ContactTargetKind contactTargets = ContactTargetKind::Reproject;
   FrictionLoadKind frictionLoad = FrictionLoadKind::Inertial;
   double friction = 0.0;            // Coulomb coefficient against the avatar (lagged); 0 = frictionless

@@ -44,6 +44,7 @@ struct PreviewReport {
   int domains = 0;             // domains used by the global solve and the local step
   double timeStep = 0.0;       // seconds: h of the step taken (settings.timeStep / 2^k, see step())
   int splits = 0;              // attempts redone at half the time step because the L-G loop hit its cap
+  bool sewn = false;           // the garment counted as sewn during this step (settings.sewnGap)
 };
 
 class PreviewSolver {

@@ -31,6 +31,7 @@ struct StepReport {
   int iterations = 0;          // Newton iterations (drape) or local-global iterations (preview)
   int cgIterations = 0;        // PCG iterations (drape: Newton systems; preview: collision-aware solve)
   int domains = 0;             // preview: METIS domains used
+  bool sewn = false;           // preview: the garment counts as sewn (solver.preview.sewn_gap)
   double collisionTime = 0.0;  // preview phase times, seconds
   double localTime = 0.0;
   double globalTime = 0.0;
