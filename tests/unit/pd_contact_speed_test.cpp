@@ -177,8 +177,19 @@ TEST(PdContactSpeed, WatchingOnlyDofsThatMayTouchKeepsEveryConstraint) {
     start.row(d) = ((0.1 + startGap(rng)) * direction()).transpose();
     xFree.row(d) = start.row(d) + moveLength(rng) * direction().transpose();
   }
-  // Two rounds: the first without hints, the second with the hints the first one left.
-  for (int round = 0; round < 2; ++round) {
+  // Rounds: the first without hints; the second with the hints and the distance bounds the first one left (carried
+  // over unchanged); the third and fourth after every start moved by up to 2 cm at its distance from the centre
+  // (starts stay in the range above), so that the carried bounds shrink by the move and some DOFs are queried
+  // again.
+  std::uniform_real_distribution<double> startMove(0.0, 0.02);
+  for (int round = 0; round < 4; ++round) {
+    if (round >= 2)
+      for (int d = 0; d < n; ++d) {
+        const Eigen::RowVector3d step = xFree.row(d) - start.row(d);
+        const double radius = start.row(d).norm();
+        start.row(d) = radius * (start.row(d) + startMove(rng) * direction().transpose()).normalized();
+        xFree.row(d) = start.row(d) + step;
+      }
     contacts.beginStep(start, start, free);
     ContactAccumulator acc(n);
     const AvatarContactStats st = contacts.addConstraints(xFree, acc);

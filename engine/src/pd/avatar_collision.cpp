@@ -37,6 +37,10 @@ void AvatarContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matri
   m_freeStart.resize(nf, 3);
   m_freePredicted.resize(nf, 3);
   if (static_cast<int>(m_hint.size()) != nf) m_hint.assign(nf, -1);
+  if (m_queriedAt.rows() != nf) {  // first step (or another set of DOFs): nothing to carry over
+    m_queriedAt.resize(nf, 3);
+    m_queriedBound.assign(nf, -1.0);
+  }
   if (m_options.targets == ContactTargetKind::StepPlanes) m_planes.assign(nf, StepPlanes{});
   tbb::parallel_for(0, nf, [&](int d) {
     const int v = freeVertices[d];
@@ -44,12 +48,24 @@ void AvatarContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matri
     m_freePredicted.row(d) = predicted.row(v);
     const double travel = (predicted.row(v) - start.row(v)).norm();
     const double watch = reach + 2.0 * travel;
+    // Rounded down so that the bound stays a lower bound in single precision.
+    const auto keep = [&](double bound) { m_bound[d] = static_cast<float>(bound * (1.0 - 1e-6)); };
+    // Carried over: the distance to the (fixed) collider changes no faster than the position, so the bound of the
+    // last query, less the distance moved since, is still a bound; while it exceeds the watch, no query is needed.
+    if (m_queriedBound[d] >= 0.0) {
+      const double carried = m_queriedBound[d] - (start.row(v) - m_queriedAt.row(d)).norm();
+      if (carried > watch) {
+        keep(carried);
+        return;
+      }
+    }
     collision::SurfacePoint sp;
     const bool found = m_collider->closest(start.row(v).transpose(), sp, watch + kBoundSlack, m_hint[d]);
     if (found) m_hint[d] = sp.triangle;
     near[d] = found && sp.signedDistance < watch;
-    // Rounded down so that the bound stays a lower bound in single precision.
-    m_bound[d] = static_cast<float>((found ? std::max(sp.signedDistance, 0.0) : watch + kBoundSlack) * (1.0 - 1e-6));
+    m_queriedAt.row(d) = start.row(v);
+    m_queriedBound[d] = found ? std::max(sp.signedDistance, 0.0) : watch + kBoundSlack;
+    keep(m_queriedBound[d]);
   });
   if (m_options.holdTargets) {
     m_held.resize(nf);

@@ -72,7 +72,9 @@ class AvatarContacts {
   // step and after the inertial prediction; freeVertices: vertex of each free DOF. Keeps the DOFs whose start is closer to the collider than
   // thickness + margin + 2 |predicted - start| as candidates, and for every other DOF a lower bound of its
   // distance to the collider (internal forces, e.g. stitches closing a seam, can move a vertex much farther than
-  // its inertial prediction: addConstraints watches those too).
+  // its inertial prediction: addConstraints watches those too). A DOF's bound is carried over from its last query,
+  // less the distance it has moved since, while that still keeps it out of the candidates; only then is it queried
+  // again. The same freeVertices are expected from step to step (a different count starts afresh).
   void beginStep(const Eigen::MatrixX3d& start, const Eigen::MatrixX3d& predicted,
                  const std::vector<int>& freeVertices);
   bool hasCandidates() const { return !m_candidates.empty(); }
@@ -124,6 +126,8 @@ class AvatarContacts {
   Eigen::MatrixX3d m_freeStart;                // start position of every free DOF (|free| x 3)
   Eigen::MatrixX3d m_freePredicted;            // inertial prediction z of every free DOF (|free| x 3)
   std::vector<float> m_bound;                  // per free DOF: lower bound of its start distance to the collider
+  Eigen::MatrixX3d m_queriedAt;                // per free DOF: where its distance was last queried (beginStep)
+  std::vector<double> m_queriedBound;          // per free DOF: the bound found there; -1 = never queried
   std::vector<int> m_hint;                     // per free DOF: its last closest collider triangle, -1 = none yet
   std::vector<Eigen::Vector3d> m_held;         // per free DOF: target held in this step (holdTargets)
   std::vector<Eigen::Vector3d> m_heldNormal;   // per free DOF: the held target's contact normal (Reproject)
