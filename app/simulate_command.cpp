@@ -27,6 +27,7 @@ nlohmann::json stepRecord(const StepReport& r) {
   if (r.stage == "preview") {
     j["domains"] = r.domains;
     j["sewn"] = r.sewn;
+    j["assembly"] = r.assembly;
     j["collision_time_s"] = r.collisionTime;
     j["local_time_s"] = r.localTime;
     j["global_time_s"] = r.globalTime;

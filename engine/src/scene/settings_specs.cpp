@@ -61,6 +61,9 @@ const std::vector<SettingSpec>& Settings::specs() {
        "how long every stitch gap must stay below sewn_gap before the garment counts as sewn", 0, 1e4},
       {"solver.preview.sewn_local_step", T::Choice, "jacobi", "", "local step once the garment is sewn", -1e300,
        1e300, {"gauss_seidel", "jacobi"}},
+      {"solver.preview.assembly_edge_length", T::Number, "0.02", "m",
+       "a garment meshed at least 1.5x finer is first sewn by the preview on a mesh of this edge length, then carried "
+       "over to its own mesh (0: never)", 0, 1},
       {"solver.preview.contact_targets", T::Choice, "reproject", "",
        "avatar contact targets: half-spaces fixed per step, or re-projected every L-G iteration", -1e300, 1e300,
        {"reproject", "step_planes"}},

@@ -4,7 +4,10 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "drape/collision/avatar_collider.h"
+#include "drape/core/input_error.h"
 #include "drape/garment/garment_builder.h"
+#include "drape/garment/garment_transfer.h"
 #include "drape/geometry/strain.h"
 #include "drape/newton/body_forces.h"
 #include "drape/pd/preview_solver.h"
@@ -35,6 +38,15 @@ struct Simulation::Solver {
   double previewOffset = 0.0;                    // scene time at the preview solver's time 0, s
   double previewTime = 0.0;                      // scene time at which the drape started, s
   Eigen::MatrixX3d previewPositions;             // the state the drape started from; no rows = placed garment
+  // solver.preview.assembly_edge_length: the preview sewing a coarser meshing of the same pattern, before
+  // `preview` takes over on the garment's own mesh. Its state reaches the garment through toGarment.
+  struct Assembly {
+    Garment garment;
+    std::unique_ptr<pd::PreviewSolver> preview;
+    Eigen::SparseMatrix<double, Eigen::RowMajor> toGarment;  // |V| x |V_assembly|
+    Eigen::VectorXd masses;                                  // |V_assembly| lumped, kg
+  };
+  std::unique_ptr<Assembly> assembly;
 };
 
 namespace {
@@ -48,6 +60,21 @@ StepStatus toStepStatus(Status s) {
     case Status::Cancelled: return StepStatus::Cancelled;
   }
   return StepStatus::Diverged;
+}
+
+// |V| x 3 rows of a flat 3|V| vector.
+Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> rowsOf(const Eigen::VectorXd& flat) {
+  return {flat.data(), flat.size() / 3, 3};
+}
+
+// Moves every vertex closer to the collider's surface than `thickness`, or inside it (searched within `reach`), to
+// `thickness` outside along the surface normal.
+void liftOutOf(const collision::AvatarCollider& collider, double thickness, double reach, Eigen::MatrixX3d& x) {
+  for (Eigen::Index v = 0; v < x.rows(); ++v) {
+    collision::SurfacePoint sp;
+    if (collider.closest(x.row(v).transpose(), sp, reach) && sp.signedDistance < 0.0)
+      x.row(v) = (sp.closest + thickness * sp.normal).transpose();
+  }
 }
 
 // 99th percentile of values (copied).
@@ -87,6 +114,7 @@ void Simulation::build(const ResumeState* from) {
   const std::string& stage = m_scene.settings.text("solver.stage");
   const bool runsPreview = stage == "preview" || stage == "full";
   if (from && from->vertexCount != m_garment.vertexCount()) from = nullptr;  // re-meshed: start over
+  if (from && from->assembling) from = nullptr;  // not sewn yet: the assembly starts over
   m_resumed = from != nullptr;
   if (from && from->stage == "preview" && runsPreview) {
     newton::ClothModel model = m_solver->model;
@@ -104,12 +132,77 @@ void Simulation::build(const ResumeState* from) {
     startDrape(from->previewPositions, m_resumed ? from->previewTime : 0.0);
   } else if (runsPreview) {
     m_resumed = false;
-    m_solver->preview =
-        std::make_unique<pd::PreviewSolver>(m_solver->model, previewSettingsFrom(m_scene), m_solver->collider);
+    if (!startAssembly())
+      m_solver->preview =
+          std::make_unique<pd::PreviewSolver>(m_solver->model, previewSettingsFrom(m_scene), m_solver->collider);
   } else {
     m_resumed = false;
     startDrape(Eigen::MatrixX3d(), 0.0);
   }
+}
+
+bool Simulation::startAssembly() {
+  const double edge = m_scene.settings.number("solver.preview.assembly_edge_length");
+  if (edge <= 0.0 || edge < 1.5 * m_scene.settings.number("mesh.target_edge_length")) return false;
+  if (m_garment.stitchPairs.empty() && m_garment.edgeStitches.empty()) return false;  // nothing to sew
+  // A vertex pin names a vertex of the scene's own mesh.
+  for (const PinSpec& pin : m_scene.pins)
+    if (!pin.vertices.empty()) return false;
+  Scene coarse = m_scene;
+  coarse.settings.set("mesh.target_edge_length", std::to_string(edge), "solver.preview.assembly_edge_length");
+  auto assembly = std::make_unique<Solver::Assembly>();
+  try {
+    assembly->garment = buildGarment(coarse.pattern, meshingOptions(coarse));
+  } catch (const InputError&) {
+    return false;  // the pattern does not mesh this coarsely: the preview sews the scene's own mesh
+  }
+  const newton::ClothModel model = buildClothModel(coarse, assembly->garment, resolvePins(coarse, assembly->garment));
+  assembly->masses = newton::lumpedVertexMasses(model);
+  assembly->toGarment = garmentTransfer(assembly->garment, m_garment);
+  assembly->preview = std::make_unique<pd::PreviewSolver>(model, previewSettingsFrom(m_scene), m_solver->collider);
+  m_solver->assembly = std::move(assembly);
+  if (m_dragVertex >= 0) setDrag(m_dragVertex, m_dragTarget);
+  return true;
+}
+
+int Simulation::assemblyVertex(int vertex) const {
+  if (vertex < 0) return -1;
+  int best = -1;
+  double weight = -1.0;
+  for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(m_solver->assembly->toGarment, vertex); it; ++it) {
+    if (it.value() > weight) {
+      weight = it.value();
+      best = static_cast<int>(it.col());
+    }
+  }
+  return best;
+}
+
+void Simulation::finishAssembly() {
+  Solver::Assembly& a = *m_solver->assembly;
+  const double start = a.preview->time();
+  Eigen::MatrixX3d x = a.toGarment * rowsOf(a.preview->positions());
+  const Eigen::MatrixX3d v = a.toGarment * rowsOf(a.preview->velocities());
+  // A garment vertex between coarse vertices can sit inside a curved body: lift it out before the contact
+  // constraints take over (within the coarse edge length: the deepest a coarse triangle's interior reaches).
+  if (m_solver->collider)
+    liftOutOf(*m_solver->collider, contactThickness(), m_scene.settings.number("solver.preview.assembly_edge_length"), x);
+  m_solver->assembly.reset();
+  const bool timeUp = start >= m_scene.settings.number("solver.preview.max_time") - 1e-12;
+  if (m_scene.settings.text("solver.stage") == "full" && timeUp) {
+    startDrape(x, start);
+    return;
+  }
+  newton::ClothModel model = m_solver->model;
+  model.velocities.resize(3 * m_garment.vertexCount());
+  for (int i = 0; i < m_garment.vertexCount(); ++i) {
+    model.positions.segment<3>(3 * i) = x.row(i).transpose();
+    model.velocities.segment<3>(3 * i) = v.row(i).transpose();
+  }
+  model.startTime = start;
+  m_solver->previewOffset = start;
+  m_solver->preview = std::make_unique<pd::PreviewSolver>(model, previewSettingsFrom(m_scene), m_solver->collider);
+  if (m_dragVertex >= 0) m_solver->preview->setDrag(m_dragVertex, m_dragTarget);
 }
 
 void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
@@ -136,6 +229,7 @@ void Simulation::setDrag(int vertex, const Eigen::Vector3d& target) {
   m_dragVertex = vertex < 0 ? -1 : vertex;
   m_dragTarget = target;
   if (m_solver->preview) m_solver->preview->setDrag(m_dragVertex, target);
+  if (m_solver->assembly) m_solver->assembly->preview->setDrag(assemblyVertex(m_dragVertex), target);
   if (m_solver->newton) m_solver->newton->setDrag(m_dragVertex, target);
   if (m_dragVertex >= 0) m_atRest = false;  // a pulled garment is not at rest
 }
@@ -144,17 +238,23 @@ ResumeState Simulation::resumeState() const {
   ResumeState r;
   r.stage = stage();
   r.vertexCount = m_garment.vertexCount();
+  r.assembling = m_solver->assembly != nullptr;
   r.positions = positions();
-  const Eigen::VectorXd& v = m_solver->preview ? m_solver->preview->velocities() : m_solver->newton->velocities();
-  r.velocities.resize(m_garment.vertexCount(), 3);
-  for (int i = 0; i < m_garment.vertexCount(); ++i) r.velocities.row(i) = v.segment<3>(3 * i).transpose();
+  if (m_solver->assembly) {
+    r.velocities = m_solver->assembly->toGarment * rowsOf(m_solver->assembly->preview->velocities());
+  } else {
+    const Eigen::VectorXd& v = m_solver->preview ? m_solver->preview->velocities() : m_solver->newton->velocities();
+    r.velocities = rowsOf(v);
+  }
   r.time = time();
   r.previewPositions = m_solver->previewPositions;
   r.previewTime = m_solver->previewTime;
   return r;
 }
 
-std::string Simulation::stage() const { return m_solver->preview ? "preview" : "drape"; }
+std::string Simulation::stage() const { return m_solver->newton ? "drape" : "preview"; }
+
+bool Simulation::assembling() const { return m_solver->assembly != nullptr; }
 
 std::vector<std::string> Simulation::terms() const {
   if (m_solver->newton) return m_solver->newton->energyNames();
@@ -171,23 +271,24 @@ std::vector<std::string> Simulation::terms() const {
 double Simulation::contactThickness() const { return drape::contactThickness(m_scene); }
 
 double Simulation::time() const {
+  if (m_solver->assembly) return m_solver->assembly->preview->time();
   return m_solver->preview ? m_solver->previewOffset + m_solver->preview->time()
                            : m_solver->previewTime + m_solver->newton->time();
 }
 
 Eigen::MatrixX3d Simulation::positions() const {
-  const Eigen::VectorXd& x = m_solver->preview ? m_solver->preview->positions() : m_solver->newton->positions();
-  Eigen::MatrixX3d p(m_garment.vertexCount(), 3);
-  for (int v = 0; v < m_garment.vertexCount(); ++v) p.row(v) = x.segment<3>(3 * v).transpose();
-  return p;
+  if (m_solver->assembly) return m_solver->assembly->toGarment * rowsOf(m_solver->assembly->preview->positions());
+  return rowsOf(m_solver->preview ? m_solver->preview->positions() : m_solver->newton->positions());
 }
 
 void Simulation::requestCancel() {
+  if (m_solver->assembly) m_solver->assembly->preview->requestCancel();
   if (m_solver->preview) m_solver->preview->requestCancel();
   if (m_solver->newton) m_solver->newton->requestCancel();
 }
 
 void Simulation::clearCancel() {
+  if (m_solver->assembly) m_solver->assembly->preview->clearCancel();
   if (m_solver->preview) m_solver->preview->clearCancel();
   if (m_solver->newton) m_solver->newton->clearCancel();
 }
@@ -206,8 +307,10 @@ std::string Simulation::endReason() const {
 StepReport Simulation::step() {
   const auto start = std::chrono::steady_clock::now();
   StepReport report;
-  if (m_solver->preview) {
-    pd::PreviewSolver& preview = *m_solver->preview;
+  if (m_solver->preview || m_solver->assembly) {
+    const bool assembling = m_solver->assembly != nullptr;
+    pd::PreviewSolver& preview = assembling ? *m_solver->assembly->preview : *m_solver->preview;
+    const Eigen::VectorXd& masses = assembling ? m_solver->assembly->masses : m_solver->masses;
     const Eigen::VectorXd before = preview.positions();
     const pd::PreviewReport r = preview.step();
     report.status = toStepStatus(r.status);
@@ -219,6 +322,7 @@ StepReport Simulation::step() {
     report.contacts = r.contacts;
     report.domains = r.domains;
     report.sewn = r.sewn;
+    report.assembly = assembling;
     report.collisionTime = r.collisionTime;
     report.localTime = r.localTime;
     report.globalTime = r.globalTime;
@@ -227,10 +331,10 @@ StepReport Simulation::step() {
     const bool stepped = r.status == pd::PreviewStatus::Converged || r.status == pd::PreviewStatus::MaxIterations;
     const Eigen::VectorXd v = stepped ? Eigen::VectorXd((preview.positions() - before) / r.timeStep)
                                       : preview.velocities();
-    std::vector<double> energies(m_solver->masses.size()), speeds(m_solver->masses.size());
-    for (Eigen::Index i = 0; i < m_solver->masses.size(); ++i) {
+    std::vector<double> energies(masses.size()), speeds(masses.size());
+    for (Eigen::Index i = 0; i < masses.size(); ++i) {
       speeds[i] = v.segment<3>(3 * i).norm();
-      energies[i] = 0.5 * m_solver->masses[i] * speeds[i] * speeds[i];
+      energies[i] = 0.5 * masses[i] * speeds[i] * speeds[i];
     }
     report.kineticEnergy = percentile99(std::move(energies));
     // Settled: vertex speeds below the threshold for a 0.1 s window (as the drape's early stop). A preview that
@@ -239,7 +343,7 @@ StepReport Simulation::step() {
     const bool previewOnly = m_scene.settings.text("solver.stage") == "preview";
     const double restSpeed = m_scene.settings.number(previewOnly ? "solver.preview.rest_speed"
                                                                  : "solver.preview.handoff_speed");
-    if (percentile99(std::move(speeds)) < restSpeed && m_dragVertex < 0) {
+    if (!assembling && percentile99(std::move(speeds)) < restSpeed && m_dragVertex < 0) {
       if (m_restSince < 0) m_restSince = time();
     } else {
       m_restSince = -1.0;
@@ -248,7 +352,10 @@ StepReport Simulation::step() {
     const bool timeUp = time() >= m_scene.settings.number("solver.preview.max_time") - 1e-12;
     report.time = time();
     ++m_steps;
-    if (previewOnly) {
+    if (assembling) {
+      // Sewn on the coarse mesh (or out of preview time): the garment's own mesh takes over.
+      if ((r.sewn || timeUp) && stepped) finishAssembly();
+    } else if (previewOnly) {
       m_atRest = settled;
       report.atRest = settled;
     } else if ((settled || timeUp) && report.status != StepStatus::Diverged) {

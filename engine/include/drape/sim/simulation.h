@@ -32,6 +32,7 @@ struct StepReport {
   int cgIterations = 0;        // PCG iterations (drape: Newton systems; preview: collision-aware solve)
   int domains = 0;             // preview: METIS domains used
   bool sewn = false;           // preview: the garment counts as sewn (solver.preview.sewn_gap)
+  bool assembly = false;       // preview: the step sewed the coarser assembly mesh (solver.preview.assembly_edge_length)
   double collisionTime = 0.0;  // preview phase times, seconds
   double localTime = 0.0;
   double globalTime = 0.0;
@@ -53,6 +54,7 @@ struct StepReport {
 // GUI) can continue from it instead of from the placed garment.
 struct ResumeState {
   std::string stage;                 // "preview" or "drape" when captured
+  bool assembling = false;           // captured while the preview sewed its coarser assembly mesh (not resumed)
   int vertexCount = 0;               // garment vertices; a garment meshed differently cannot resume
   Eigen::MatrixX3d positions;        // |V| x 3, metres
   Eigen::MatrixX3d velocities;       // |V| x 3, m/s
@@ -102,6 +104,9 @@ class Simulation {
   // Names of the terms the current stage's solver uses ("membrane", "bending", "avatar_contact", ...).
   std::vector<std::string> terms() const;
   std::string stage() const;  // "preview" or "drape"
+  // The preview is sewing the garment on its coarser assembly mesh (solver.preview.assembly_edge_length); the
+  // garment's positions are carried over from it.
+  bool assembling() const;
   Eigen::MatrixX3d positions() const;  // |V| x 3, metres
   double time() const;
   int steps() const { return m_steps; }
@@ -123,6 +128,15 @@ class Simulation {
   Eigen::Vector3d m_dragTarget = Eigen::Vector3d::Zero();
 
   void build(const ResumeState* from);
+  // Starts the preview on the coarser assembly mesh when solver.preview.assembly_edge_length asks for one; false
+  // when the scene's own mesh is not that much finer, has no seam, has vertex pins or the pattern does not mesh so
+  // coarsely.
+  bool startAssembly();
+  // Carries the assembly's state over to the garment's own mesh: the preview continues there, or, in the full
+  // pipeline once solver.preview.max_time is reached, the drape starts.
+  void finishAssembly();
+  // The assembly mesh vertex that carries most of garment vertex `vertex` (-1 for -1).
+  int assemblyVertex(int vertex) const;
   // Starts the Newton drape from positions (|V| x 3; no rows = the placed garment) at scene time `time`.
   void startDrape(const Eigen::MatrixX3d& positions, double time);
 };
