@@ -140,6 +140,17 @@ TEST(PdTshirtPreview, FineShirtIsSewnOnACoarserMeshAndCarriedOver) {
     Simulation again(sim.scene(), state);
     EXPECT_FALSE(again.resumed());
     EXPECT_TRUE(again.assembling());
+    // Snapshots and drags go through the transfer while the assembly runs.
+    const Snapshot snap = sim.snapshot();
+    EXPECT_EQ(snap.positions.rows(), sim.garment().vertexCount());
+    EXPECT_EQ(snap.vertexContact.size(), sim.garment().vertexCount());
+    EXPECT_EQ(snap.stage, "preview");
+    Simulation free(sim.scene(), state);
+    const Eigen::Vector3d grabbed = again.positions().row(100).transpose();
+    again.setDrag(100, grabbed + Eigen::Vector3d(0.0, 0.0, 0.05));
+    EXPECT_NE(again.step().status, StepStatus::Diverged);
+    EXPECT_NE(free.step().status, StepStatus::Diverged);
+    EXPECT_GT(again.positions()(100, 2), free.positions()(100, 2) + 1e-4);  // pulled forward by the drag
   }
   while (!sim.finished() && sim.assembling()) {
     const StepReport r = sim.step();

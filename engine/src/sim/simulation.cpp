@@ -67,8 +67,8 @@ Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> rows
   return {flat.data(), flat.size() / 3, 3};
 }
 
-// Moves every vertex closer to the collider's surface than `thickness`, or inside it (searched within `reach`), to
-// `thickness` outside along the surface normal.
+// Moves every vertex inside the collider (found within `reach` of its surface) to `thickness` outside, along the
+// surface normal.
 void liftOutOf(const collision::AvatarCollider& collider, double thickness, double reach, Eigen::MatrixX3d& x) {
   for (Eigen::Index v = 0; v < x.rows(); ++v) {
     collision::SurfacePoint sp;
@@ -298,7 +298,7 @@ bool Simulation::finished() const { return !endReason().empty(); }
 std::string Simulation::endReason() const {
   const bool previewOnly = m_scene.settings.text("solver.stage") == "preview";
   // A preview that hands over to the drape is never at rest itself: the drape follows.
-  if (m_atRest && (!m_solver->preview || previewOnly)) return "AtRest";
+  if (m_atRest && (m_solver->newton || previewOnly)) return "AtRest";
   if (time() >= m_scene.settings.number("solver.max_sim_time") - 1e-12) return "MaxSimTime";
   if (m_steps >= m_scene.settings.integer("solver.max_steps")) return "MaxSteps";
   return "";
@@ -389,9 +389,11 @@ StepReport Simulation::step() {
 
 Snapshot Simulation::snapshot() const {
   Snapshot s = makeSnapshot(m_scene, m_garment, positions());
-  if (m_solver->preview) {
-    const auto& domains = m_solver->preview->triangleDomain();
-    s.triangleDomain = Eigen::Map<const Eigen::VectorXi>(domains.data(), static_cast<Eigen::Index>(domains.size()));
+  if (!m_solver->newton) {
+    if (m_solver->preview) {  // the coarse assembly's domains do not colour the garment's triangles
+      const auto& domains = m_solver->preview->triangleDomain();
+      s.triangleDomain = Eigen::Map<const Eigen::VectorXi>(domains.data(), static_cast<Eigen::Index>(domains.size()));
+    }
     Eigen::VectorXd x(3 * m_garment.vertexCount());
     for (int v = 0; v < m_garment.vertexCount(); ++v) x.segment<3>(3 * v) = s.positions.row(v).transpose();
     ContactTerms probe;
