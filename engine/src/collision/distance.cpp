@@ -13,7 +13,7 @@ double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
 PointTriangleResult makeResult(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                const Eigen::Vector3d& c, double wb, double wc, TriangleRegion region) {
   PointTriangleResult r;
-  r.barycentric = Eigen::Vector3d(1.0 - wb - wc, wb, wc);
+  r.barycentric = Eigen::Vector3d(std::max(0.0, 1.0 - wb - wc), wb, wc);  // wb + wc may round past 1 on edge BC
   r.closest = r.barycentric[0] * a + wb * b + wc * c;
   r.region = region;
   r.distanceSquared = (p - r.closest).squaredNorm();
