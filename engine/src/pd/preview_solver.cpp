@@ -117,9 +117,6 @@ struct PreviewSolver::Impl {
   PreviewReport step();
   // One attempt at the current level's time step; commits x, v and time unless it diverged or was cancelled.
   PreviewReport attempt();
-  // From the next step on: avatar contact targets held within a step, friction loaded by the cloth's tension, the
-  // sewn local step (PreviewSettings::sewnGap).
-  void enterSewnRegime();
   // Makes level k (time step settings.timeStep / 2^k) current, building it on first use.
   void useLevel(int k);
   // Appends the grabbed vertex's constraint (replacing a contact on the same DOF).
@@ -261,25 +258,22 @@ PreviewReport PreviewSolver::Impl::step() {
   }
   const bool kept = total.status == PreviewStatus::Converged || total.status == PreviewStatus::MaxIterations;
   if (!sewn && kept && settings.sewnGap > 0.0) {
-    if (pd::largestStitchGap(model, x) >= settings.sewnGap) closedSince = -1.0;
+    if (largestStitchGap(model, x) >= settings.sewnGap) closedSince = -1.0;
     else if (closedSince < 0.0) closedSince = time;
   }
   if (!sewn && closedSince >= 0.0 && time - closedSince >= settings.sewnTime &&
-      total.status == PreviewStatus::Converged)
-    enterSewnRegime();
+      total.status == PreviewStatus::Converged) {
+    sewn = true;
+    if (avatar) {
+      avatar->setHoldTargets(true);
+      avatar->setFrictionLoad(FrictionLoadKind::CollisionFree);
+    }
+  }
   total.sewn = sewn;
   toFlat(x, flatX);
   toFlat(v, flatV);
   total.wallTime = seconds(start, Clock::now());
   return total;
-}
-
-void PreviewSolver::Impl::enterSewnRegime() {
-  sewn = true;
-  if (avatar) {
-    avatar->setHoldTargets(true);
-    avatar->setFrictionLoad(FrictionLoadKind::CollisionFree);
-  }
 }
 
 PreviewReport PreviewSolver::Impl::attempt() {
@@ -440,8 +434,6 @@ void PreviewSolver::setDrag(int vertex, const Eigen::Vector3d& target) {
 
 void PreviewSolver::requestCancel() { m_impl->cancel = true; }
 void PreviewSolver::clearCancel() { m_impl->cancel = false; }
-
-double PreviewSolver::largestStitchGap() const { return drape::pd::largestStitchGap(m_impl->model, m_impl->x); }
 const Eigen::VectorXd& PreviewSolver::positions() const { return m_impl->flatX; }
 const Eigen::VectorXd& PreviewSolver::velocities() const { return m_impl->flatV; }
 const std::vector<int>& PreviewSolver::triangleDomain() const { return m_impl->triangleDomain; }

@@ -161,7 +161,6 @@ bool Simulation::startAssembly() {
   assembly->toGarment = garmentTransfer(assembly->garment, m_garment);
   assembly->preview = std::make_unique<pd::PreviewSolver>(model, previewSettingsFrom(m_scene), m_solver->collider);
   m_solver->assembly = std::move(assembly);
-  if (m_dragVertex >= 0) setDrag(m_dragVertex, m_dragTarget);
   return true;
 }
 
@@ -169,7 +168,8 @@ int Simulation::assemblyVertex(int vertex) const {
   if (vertex < 0) return -1;
   int best = -1;
   double weight = -1.0;
-  for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(m_solver->assembly->toGarment, vertex); it; ++it) {
+  using Row = Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator;
+  for (Row it(m_solver->assembly->toGarment, vertex); it; ++it) {
     if (it.value() > weight) {
       weight = it.value();
       best = static_cast<int>(it.col());
@@ -185,8 +185,10 @@ void Simulation::finishAssembly() {
   const Eigen::MatrixX3d v = a.toGarment * rowsOf(a.preview->velocities());
   // A garment vertex between coarse vertices can sit inside a curved body: lift it out before the contact
   // constraints take over (within the coarse edge length: the deepest a coarse triangle's interior reaches).
-  if (m_solver->collider)
-    liftOutOf(*m_solver->collider, contactThickness(), m_scene.settings.number("solver.preview.assembly_edge_length"), x);
+  if (m_solver->collider) {
+    liftOutOf(*m_solver->collider, contactThickness(),
+              m_scene.settings.number("solver.preview.assembly_edge_length"), x);
+  }
   m_solver->assembly.reset();
   const bool timeUp = start >= m_scene.settings.number("solver.preview.max_time") - 1e-12;
   if (m_scene.settings.text("solver.stage") == "full" && timeUp) {

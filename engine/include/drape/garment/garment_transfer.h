@@ -8,8 +8,8 @@
 
 namespace drape {
 
-// |V_to| x |V_from|, at most three non-negative weights per row summing to one: to.positions ~ T * from.positions for the same
-// deformation. Both garments must mesh the same pattern (panel names in the same order); throws
+// |V_to| x |V_from|, at most three non-negative weights per row summing to one: to.positions ~ T * from.positions
+// for the same deformation. Both garments must mesh the same pattern (panel names in the same order); throws
 // std::invalid_argument when they do not or when a panel of `to` has no triangle in `from`.
 Eigen::SparseMatrix<double, Eigen::RowMajor> garmentTransfer(const Garment& from, const Garment& to);
 

@@ -71,9 +71,6 @@ class PreviewSolver {
   // vertex < 0 releases it. A pinned vertex cannot be dragged (ignored).
   void setDrag(int vertex, const Eigen::Vector3d& target);
 
-  // Largest distance between the two sides of a stitch, metres (0 without stitches).
-  double largestStitchGap() const;
-
   const Eigen::VectorXd& positions() const;   // 3|V|, metres
   const Eigen::VectorXd& velocities() const;  // 3|V|, m/s
   // Per-triangle domain id in [0, domainCount()), for rendering.

@@ -32,7 +32,7 @@ struct StepReport {
   int cgIterations = 0;        // PCG iterations (drape: Newton systems; preview: collision-aware solve)
   int domains = 0;             // preview: METIS domains used
   bool sewn = false;           // preview: the garment counts as sewn (solver.preview.sewn_gap)
-  bool assembly = false;       // preview: the step sewed the coarser assembly mesh (solver.preview.assembly_edge_length)
+  bool assembly = false;       // preview: the step sewed the coarser mesh of solver.preview.assembly_edge_length
   double collisionTime = 0.0;  // preview phase times, seconds
   double localTime = 0.0;
   double globalTime = 0.0;
