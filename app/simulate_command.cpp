@@ -86,6 +86,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
       domains = std::max(domains, last.domains);
       if (simulation.stage() != lastStage) {
         out << "  stage " << lastStage << " -> " << simulation.stage() << " at t=" << last.time << " s\n";
+        if (!simulation.previewFailure().empty()) out << "  " << simulation.previewFailure() << "\n";
         lastStage = simulation.stage();
       }
       if (last.status == StepStatus::Diverged || last.status == StepStatus::Cancelled) {
@@ -108,6 +109,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
              {"per_step", perStep}, {"vertices", simulation.garment().vertexCount()},
              {"triangles", simulation.garment().triangleCount()}, {"pinned_vertices", simulation.pinned().size()},
              {"final", stepRecord(last)}, {"domains", domains}};
+    if (!simulation.previewFailure().empty()) stats["preview_failure"] = simulation.previewFailure();
     out << simulation.stage() << ": " << status << " after " << simulation.steps() << " steps, " << simulation.time()
         << " s simulated; wrote " << options.output << "\n";
     if (status == "Diverged")

@@ -93,6 +93,23 @@ TEST(CliSimulate, FullPipelineRunsThePreviewThenTheDrape) {
   EXPECT_GE(j.at("domains").get<int>(), 1);
 }
 
+TEST(CliSimulate, TornPreviewIsReportedAndTheDrapeStartsFromThePlacedGarment) {
+  // The default scene's first preview step stretches a seam triangle by ~300 %, past a failure strain of 200 %.
+  const auto stats = kScratch / "torn.json";
+  auto r = drape("--simulate " + asset("scenes/default.json") + " --solver full --set solver.preview.failure_strain=2" +
+                 " --max-sim-time 0.002 -o " + quote((kScratch / "torn.obj").string()) + " --stats " +
+                 quote(stats.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("the drape starts from the placed garment"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(readWhole(stats));
+  EXPECT_NE(j.at("preview_failure").get<std::string>().find("the body passed through the cloth"), std::string::npos);
+  const auto& steps = j.at("per_step");
+  ASSERT_GE(steps.size(), 2u);
+  EXPECT_EQ(steps[0].at("stage"), "preview");
+  EXPECT_EQ(steps[1].at("stage"), "drape");
+  EXPECT_LT(steps[1].at("time").get<double>(), 0.001);  // the drape's clock starts again at 0
+}
+
 TEST(CliRender, WritesPngOfRequestedSize) {
   const auto png = kScratch / "default.png";
   std::filesystem::remove(png);

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "drape/collision/avatar_collider.h"
 #include "drape/geometry/strain.h"
@@ -18,10 +19,15 @@
 
 namespace drape::test {
 
+// The first two tests keep the preview's start of stops 12-22 (no quasi-static start): their stretch and slide
+// bounds were set on it. With the default quasi-static start (stop 23) the sewn preview's shoulders stretch to 99 %
+// and the shirt drops 25 mm in the 0.5 s after it is sewn (the under-converged PD elasticity carrying the whole shirt
+// from the shoulders, instead of a back hem perched on the small of the back); QuasiStaticStartKeepsTheBackHemDown
+// covers the default.
 TEST(PdTshirtPreview, DefaultSceneStaysOnTheBodyAndHandsOverToTheDrape) {
   SceneRequest request;
   request.input = assetsDir() / "scenes" / "default.json";
-  request.overrides = {{"solver.stage", "full"}};
+  request.overrides = {{"solver.stage", "full"}, {"solver.preview.relaxation_time", "0"}};
   Simulation sim(loadScene(request));
   const collision::AvatarCollider body(mergedColliders(sim.scene()));
   // Closing the seams stretches triangles along them for a few hundredths of a second; after that phase (0.1 s)
@@ -60,7 +66,9 @@ TEST(PdTshirtPreview, DefaultSceneStaysOnTheBodyAndHandsOverToTheDrape) {
 TEST(PdTshirtPreview, SewnShirtConvergesAtThePapersStepAndStaysPut) {
   SceneRequest request;
   request.input = assetsDir() / "scenes" / "default.json";
-  request.overrides = {{"solver.stage", "preview"}, {"solver.max_sim_time", "3"}};
+  request.overrides = {{"solver.stage", "preview"},
+                       {"solver.max_sim_time", "3"},
+                       {"solver.preview.relaxation_time", "0"}};
   Simulation sim(loadScene(request));
   const collision::AvatarCollider body(mergedColliders(sim.scene()));
   double sewnAt = -1.0;
@@ -119,6 +127,55 @@ TEST(PdTshirtPreview, SewnShirtConvergesAtThePapersStepAndStaysPut) {
   }
   EXPECT_EQ(inside, 0);
   EXPECT_EQ(away, 0);
+}
+
+// Stop 23: without the quasi-static start, the stitches' pull of the first steps, carried on as velocity, threw the
+// back hem up (6.6 cm within 5 ms at one vertex) onto the small of the back, where the drape kept it (the pipeline's
+// drape ended 24.8 mm from Newton alone's, the back hem 6 cm higher). With it (the default), the hem comes down.
+TEST(PdTshirtPreview, QuasiStaticStartKeepsTheBackHemDown) {
+  SceneRequest request;
+  request.input = assetsDir() / "scenes" / "default.json";
+  request.overrides = {{"solver.stage", "full"}};
+  Simulation sim(loadScene(request));
+  const collision::AvatarCollider body(mergedColliders(sim.scene()));
+  // The back panel's hem: the lowest placed vertices behind the body.
+  const Eigen::MatrixX3d placed = sim.positions();
+  const double hemHeight = placed.col(1).minCoeff();
+  std::vector<int> backHem;
+  for (int v = 0; v < placed.rows(); ++v)
+    if (placed(v, 2) < 0.0 && placed(v, 1) < hemHeight + 0.02) backHem.push_back(v);
+  ASSERT_GT(backHem.size(), 5u);
+  const auto hemMean = [&] {
+    double mean = 0.0;
+    for (int v : backHem) mean += sim.positions()(v, 1) / static_cast<double>(backHem.size());
+    return mean;
+  };
+  double worstStrain = 0.0, highestHem = -1e9;
+  while (!sim.finished() && sim.stage() == "preview") {
+    const StepReport r = sim.step();
+    ASSERT_NE(r.status, StepStatus::Diverged) << "t = " << r.time;
+    if (r.time > 0.1) worstStrain = std::max(worstStrain, r.maxStrain);
+    highestHem = std::max(highestHem, hemMean());
+  }
+  EXPECT_TRUE(sim.previewFailure().empty()) << sim.previewFailure();
+  const double handedOver = hemMean();
+  // Mean height of the back hem, placed at 0.815 m (Newton alone drapes it at 0.87 m). Thrown, it reached 1.05 m and
+  // was still at 0.97 m at the hand-over; now 0.95 m at most and 0.88 m at the hand-over.
+  EXPECT_LT(highestHem, hemHeight + 0.2) << "the back hem flew up";
+  EXPECT_LT(handedOver, hemHeight + 0.1) << "the back hem stayed up";
+  EXPECT_LT(worstStrain, 1.2);  // 99 % at the shoulders (see above)
+  const Eigen::MatrixX3d x = sim.positions();
+  ASSERT_TRUE(x.allFinite());
+  int inside = 0, away = 0;
+  for (int v = 0; v < x.rows(); ++v) {
+    const double d = body.signedDistance(x.row(v).transpose());
+    inside += d < -sim.contactThickness();
+    away += d > 0.1;
+  }
+  EXPECT_EQ(inside, 0);
+  EXPECT_EQ(away, 0);
+  for (int i = 0; i < 50 && !sim.finished(); ++i) ASSERT_NE(sim.step().status, StepStatus::Diverged);
+  EXPECT_EQ(sim.stage(), "drape");
 }
 
 // At 1 cm the preview could not sew the t-shirt by itself (stop 21): every step hit the L-G cap at 1/480 s, the

@@ -1,6 +1,6 @@
 // The preview -> drape hand-off of the full pipeline: when the preview hands over (hand-off speed held for 0.1 s,
-// or its time limit) and how the drape starts from the preview's state (no second initial relaxation unless
-// asked for).
+// or its time limit), how the drape starts from the preview's state (no second initial relaxation unless asked
+// for), and when the preview is given up for a drape from the placed garment (solver.preview.failure_strain).
 #include <gtest/gtest.h>
 
 #include "drape/scene/scene.h"
@@ -46,12 +46,21 @@ TEST(PipelineHandoff, DrapeFromThePreviewSkipsTheInitialRelaxation) {
 }
 
 TEST(PipelineHandoff, PreviewHandsOverOnceTheHandoffSpeedHeldForTheWindow) {
-  // Every speed is below 100 m/s: the hand-off comes after the 0.1 s window, long before the 1 s limit.
+  // Every speed is below 100 m/s: the hand-off comes after the 0.1 s window, which opens once the preview's
+  // quasi-static start is over, long before the 1 s limit.
   Simulation eager(coarseTablecloth({{"solver.preview.handoff_speed", "100"}}));
+  const double relaxation = eager.scene().settings.number("solver.preview.relaxation_time");
   double handoff = 0.0;
   firstDrapeStep(eager, &handoff);
-  EXPECT_GE(handoff, 0.1 - 1e-9);
-  EXPECT_LT(handoff, 0.15);
+  EXPECT_GE(handoff, relaxation + 0.1 - 1e-9);
+  EXPECT_LT(handoff, relaxation + 0.15);
+  // A relaxing cloth moves at most g h (0.08 m/s at 1/120 s) whatever its forces: no window opens before the
+  // relaxation ends (before stop 23 this one handed over at 0.1 s, halfway through its relaxation).
+  Simulation relaxing(
+      coarseTablecloth({{"solver.preview.handoff_speed", "100"}, {"solver.preview.relaxation_time", "0.2"}}));
+  firstDrapeStep(relaxing, &handoff);
+  EXPECT_GE(handoff, 0.3 - 1e-9);
+  EXPECT_LT(handoff, 0.35);
   // No speed is below 0: the preview runs to its time limit.
   Simulation never(coarseTablecloth({{"solver.preview.handoff_speed", "0"}, {"solver.preview.max_time", "0.3"}}));
   firstDrapeStep(never, &handoff);
@@ -67,6 +76,33 @@ TEST(PipelineHandoff, RelaxingPreviewIsNotSettledByItsZeroedVelocities) {
   while (sim.time() < 0.25 && !sim.finished()) last = sim.step();
   EXPECT_FALSE(sim.finished()) << "settled at t = " << sim.time() << " s while relaxing";
   EXPECT_GT(last.kineticEnergy, 0.0);
+}
+
+TEST(PipelineHandoff, TornPreviewIsGivenUpForTheDrapeFromThePlacedGarment) {
+  // The first preview step of the default scene stretches a triangle along the closing seams by about 300 %: with a
+  // failure strain of 200 % that counts as the body passing through the cloth, and the drape starts from the placed
+  // garment at scene time 0 (with its initial relaxation), not from the preview's state.
+  SceneRequest request;
+  request.input = assetsDir() / "scenes" / "default.json";
+  request.overrides = {{"solver.stage", "full"}, {"solver.preview.failure_strain", "2"}};
+  Simulation sim(loadScene(request));
+  const Eigen::MatrixX3d placed = sim.positions();
+  const StepReport first = sim.step();
+  EXPECT_EQ(first.stage, "preview");
+  ASSERT_GT(first.maxStrain, 2.0);
+  EXPECT_EQ(sim.stage(), "drape");
+  EXPECT_NE(sim.previewFailure().find("the drape starts from the placed garment"), std::string::npos);
+  EXPECT_DOUBLE_EQ(sim.time(), 0.0);
+  EXPECT_EQ((sim.positions() - placed).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(sim.resumeState().previewPositions.rows(), 0);
+  EXPECT_DOUBLE_EQ(sim.step().h, sim.scene().settings.number("solver.newton.h_max") / 16.0);
+
+  // At the default (500 %) the same step does not fail: the preview goes on.
+  request.overrides = {{"solver.stage", "full"}};
+  Simulation kept(loadScene(request));
+  kept.step();
+  EXPECT_EQ(kept.stage(), "preview");
+  EXPECT_TRUE(kept.previewFailure().empty());
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <stdexcept>
 
 #include "drape/collision/avatar_collider.h"
@@ -226,6 +227,18 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
   m_atRest = false;
 }
 
+void Simulation::failPreviewIfTorn(const StepReport& report) {
+  const double limit = m_scene.settings.number("solver.preview.failure_strain");
+  if (limit <= 0.0 || report.maxStrain <= limit || m_scene.settings.text("solver.stage") == "preview") return;
+  char message[200];
+  std::snprintf(message, sizeof message,
+                "the preview stretched a triangle to %.0f %% at t = %.3f s (the body passed through the cloth); "
+                "the drape starts from the placed garment", 100.0 * report.maxStrain, report.time);
+  m_previewFailure = message;
+  m_solver->assembly.reset();
+  startDrape(Eigen::MatrixX3d(), 0.0);
+}
+
 void Simulation::setDrag(int vertex, const Eigen::Vector3d& target) {
   if (vertex >= m_garment.vertexCount()) throw std::invalid_argument("drag: vertex index out of range");
   m_dragVertex = vertex < 0 ? -1 : vertex;
@@ -345,7 +358,9 @@ StepReport Simulation::step() {
     const bool previewOnly = m_scene.settings.text("solver.stage") == "preview";
     const double restSpeed = m_scene.settings.number(previewOnly ? "solver.preview.rest_speed"
                                                                  : "solver.preview.handoff_speed");
-    if (!assembling && percentile99(std::move(speeds)) < restSpeed && m_dragVertex < 0) {
+    // A relaxing preview moves at most g h per step whatever its forces: its rest window opens after the relaxation.
+    const bool relaxing = time() < m_scene.settings.number("solver.preview.relaxation_time") - 1e-12;
+    if (!assembling && !relaxing && percentile99(std::move(speeds)) < restSpeed && m_dragVertex < 0) {
       if (m_restSince < 0) m_restSince = time();
     } else {
       m_restSince = -1.0;
@@ -385,6 +400,7 @@ StepReport Simulation::step() {
   }
   const Eigen::VectorXd stretch = triangleStretch(m_garment.rest, positions(), m_garment.triangles);
   report.maxStrain = stretch.size() ? stretch.maxCoeff() : 0.0;
+  if (report.stage == "preview") failPreviewIfTorn(report);
   report.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }

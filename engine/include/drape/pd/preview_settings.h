@@ -62,7 +62,8 @@ struct PreviewSettings {
   double velocityDamping = 0.0;   // fraction of velocity removed per step, in [0, 1)
   // Seconds of scene time from the start during which velocities are zeroed after every step: the garment
   // assembles quasi-statically (stitches close the seams within a step or two and would otherwise throw the
-  // panels at metres per second through each other and the body), as the drape's initial relaxation.
+  // panels at metres per second through each other and the body), as the drape's initial relaxation. Scenes default
+  // to 0.05 s (solver.preview.relaxation_time); 0 here, so a solver built directly starts in free fall.
   double relaxationTime = 0.0;
 
   // Contact (pd-dd sections 6, 7.3). Avatar terms only with an avatar collider, cloth terms only with selfCollision.

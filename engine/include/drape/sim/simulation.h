@@ -110,6 +110,9 @@ class Simulation {
   Eigen::MatrixX3d positions() const;  // |V| x 3, metres
   double time() const;
   int steps() const { return m_steps; }
+  // Full pipeline: why the preview was given up (solver.preview.failure_strain) and the drape started from the
+  // placed garment instead, at scene time 0; empty while it was not.
+  const std::string& previewFailure() const { return m_previewFailure; }
   // Contact thickness the solvers use, metres (contact.thickness, else the thickest fabric, at least 2 mm).
   double contactThickness() const;
 
@@ -124,6 +127,7 @@ class Simulation {
   bool m_atRest = false;
   bool m_resumed = false;
   double m_restSince = -1.0;  // preview: time the settle criterion started to hold
+  std::string m_previewFailure;
   int m_dragVertex = -1;
   Eigen::Vector3d m_dragTarget = Eigen::Vector3d::Zero();
 
@@ -137,6 +141,10 @@ class Simulation {
   void finishAssembly();
   // The assembly mesh vertex that carries most of garment vertex `vertex` (-1 for -1).
   int assemblyVertex(int vertex) const;
+  // Full pipeline: a preview step that left a triangle stretched past solver.preview.failure_strain has torn the
+  // garment on the body (the preview's vertex contact lets the body through between vertices); its state is no
+  // start for the drape, which starts from the placed garment instead.
+  void failPreviewIfTorn(const StepReport& report);
   // Starts the Newton drape from positions (|V| x 3; no rows = the placed garment) at scene time `time`.
   void startDrape(const Eigen::MatrixX3d& positions, double time);
 };
