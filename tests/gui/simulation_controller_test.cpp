@@ -17,6 +17,7 @@ struct Recorder {
   std::vector<StepReport> reports;
   std::vector<qt::RunState> states;
   std::vector<QString> errors;
+  std::vector<QString> notices;
   bool offUiThread = false;  // a signal was delivered on another thread than the UI thread
 
   void attach(qt::SimulationController& c) {
@@ -30,6 +31,7 @@ struct Recorder {
     });
     QObject::connect(&c, &qt::SimulationController::runStateChanged, [this](qt::RunState s) { states.push_back(s); });
     QObject::connect(&c, &qt::SimulationController::errorOccurred, [this](const QString& e) { errors.push_back(e); });
+    QObject::connect(&c, &qt::SimulationController::noticeOccurred, [this](const QString& n) { notices.push_back(n); });
   }
 };
 
@@ -199,6 +201,30 @@ TEST_F(SimulationControllerTest, ANewSimulationReplacesARunningOne) {
            controller.latestSnapshot()->positions.rows() == vertices;
   }));
   EXPECT_EQ(controller.latestSnapshot()->time, 0.0);
+}
+
+TEST_F(SimulationControllerTest, TornPreviewIsGivenUpWithANotice) {
+  // The default scene's first preview step stretches a seam triangle by ~300 %, past a failure strain of 200 %:
+  // the full pipeline drapes from the placed garment instead, and the user is told.
+  qt::SceneState state;
+  state.input = assetsDir() / "scenes" / "default.json";
+  state.overrides["solver.stage"] = "full";
+  state.overrides["solver.preview.failure_strain"] = "2";
+  qt::SimulationController controller;
+  Recorder rec;
+  rec.attach(controller);
+  controller.setSimulation(std::make_shared<Simulation>(qt::buildScene(state)));
+  ASSERT_TRUE(waitUntil([&] { return !rec.snapshots.empty(); }));
+  controller.start();
+  ASSERT_TRUE(waitUntil([&] { return rec.reports.size() >= 2; }, 20000));
+  controller.pause();
+  ASSERT_TRUE(waitUntil([&] { return controller.runState() == qt::RunState::Paused; }, 20000));
+  ASSERT_EQ(rec.notices.size(), 1u);
+  EXPECT_TRUE(rec.notices.front().contains("the drape starts from the placed garment"))
+      << rec.notices.front().toStdString();
+  EXPECT_EQ(rec.reports[0].stage, "preview");
+  EXPECT_EQ(rec.reports[1].stage, "drape");
+  EXPECT_TRUE(rec.errors.empty());
 }
 
 }  // namespace

@@ -105,5 +105,30 @@ TEST(PipelineHandoff, TornPreviewIsGivenUpForTheDrapeFromThePlacedGarment) {
   EXPECT_TRUE(kept.previewFailure().empty());
 }
 
+TEST(PipelineHandoff, DrapeAskedToStartFromATornPreviewStateStartsFromThePlacedGarment) {
+  // What the GUI's Drape button (and an edit during a drape) hands over: a preview state to start the drape from.
+  Simulation preview(coarseTablecloth({{"solver.stage", "preview"}}));
+  for (int i = 0; i < 5; ++i) preview.step();
+  ResumeState from = preview.resumeState();
+  from.stage = "drape";
+  from.previewPositions = from.positions;
+  from.previewTime = from.time;
+  Scene scene = coarseTablecloth({{"solver.stage", "drape"}});
+  const Eigen::MatrixX3d placed = Simulation(scene).positions();
+
+  Simulation intact(scene, from);
+  EXPECT_TRUE(intact.resumed());
+  EXPECT_TRUE(intact.previewFailure().empty());
+  EXPECT_DOUBLE_EQ(intact.time(), from.time);
+
+  // One vertex 2 m away stretches its triangles far past 500 %.
+  from.previewPositions(0, 1) += 2.0;
+  Simulation torn(scene, from);
+  EXPECT_FALSE(torn.resumed());
+  EXPECT_NE(torn.previewFailure().find("the drape starts from the placed garment"), std::string::npos);
+  EXPECT_DOUBLE_EQ(torn.time(), 0.0);
+  EXPECT_EQ((torn.positions() - placed).cwiseAbs().maxCoeff(), 0.0);
+}
+
 }  // namespace
 }  // namespace drape::test

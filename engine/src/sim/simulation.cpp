@@ -130,7 +130,8 @@ void Simulation::build(const ResumeState* from) {
     m_solver->preview = std::make_unique<pd::PreviewSolver>(model, previewSettingsFrom(m_scene), m_solver->collider);
   } else if (from && from->stage == "drape") {
     m_resumed = from->previewPositions.rows() > 0;  // else the drape had started from the placed garment
-    startDrape(from->previewPositions, m_resumed ? from->previewTime : 0.0);
+    if (m_resumed && tornPreviewState(from->previewPositions, from->previewTime)) m_resumed = false;
+    startDrape(m_resumed ? from->previewPositions : Eigen::MatrixX3d(), m_resumed ? from->previewTime : 0.0);
   } else if (runsPreview) {
     m_resumed = false;
     if (!startAssembly())
@@ -227,14 +228,24 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
   m_atRest = false;
 }
 
-void Simulation::failPreviewIfTorn(const StepReport& report) {
+bool Simulation::tornPreviewState(double maxStrain, double time) {
   const double limit = m_scene.settings.number("solver.preview.failure_strain");
-  if (limit <= 0.0 || report.maxStrain <= limit || m_scene.settings.text("solver.stage") == "preview") return;
+  if (limit <= 0.0 || maxStrain <= limit) return false;
   char message[200];
   std::snprintf(message, sizeof message,
                 "the preview stretched a triangle to %.0f %% at t = %.3f s (the body passed through the cloth); "
-                "the drape starts from the placed garment", 100.0 * report.maxStrain, report.time);
+                "the drape starts from the placed garment", 100.0 * maxStrain, time);
   m_previewFailure = message;
+  return true;
+}
+
+bool Simulation::tornPreviewState(const Eigen::MatrixX3d& positions, double time) {
+  const Eigen::VectorXd stretch = triangleStretch(m_garment.rest, positions, m_garment.triangles);
+  return tornPreviewState(stretch.size() ? stretch.maxCoeff() : 0.0, time);
+}
+
+void Simulation::failPreviewIfTorn(const StepReport& report) {
+  if (m_scene.settings.text("solver.stage") == "preview" || !tornPreviewState(report.maxStrain, report.time)) return;
   m_solver->assembly.reset();
   startDrape(Eigen::MatrixX3d(), 0.0);
 }

@@ -248,6 +248,7 @@ void MainWindow::connectDocument() {
                         .arg(simulation->garment().triangleCount())
                         .arg(simulation->pinned().size())
                         .arg(terms.join(", ")));
+    if (!simulation->previewFailure().empty()) log(tr("warning"), QString::fromStdString(simulation->previewFailure()));
     if (simulation->resumed()) {
       // An edit of the running scene (fabric, pin, setting): continue from the current state.
       log(tr("info"), tr("The %1 continues from %2 (t = %3 s)")
@@ -298,6 +299,8 @@ void MainWindow::connectDocument() {
   });
   connect(m_controller, &SimulationController::errorOccurred, this,
           [this](const QString& message) { showError(tr("Simulation"), message); });
+  connect(m_controller, &SimulationController::noticeOccurred, this,
+          [this](const QString& message) { log(tr("warning"), message); });
 }
 
 void MainWindow::updateActions() {

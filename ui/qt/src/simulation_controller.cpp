@@ -35,6 +35,8 @@ SimulationController::SimulationController(QObject* parent) : QObject(parent) {
       },
       Qt::QueuedConnection);
   connect(m_worker, &SimulationWorker::errorOccurred, this, &SimulationController::errorOccurred, Qt::QueuedConnection);
+  connect(m_worker, &SimulationWorker::noticeOccurred, this, &SimulationController::noticeOccurred,
+          Qt::QueuedConnection);
   m_thread.start();
 }
 

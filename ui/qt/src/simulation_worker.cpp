@@ -140,6 +140,7 @@ bool SimulationWorker::rebuild(const std::string& stage, const ResumeState* from
     scene.settings.set("solver.stage", stage, "simulation");
     auto fresh = from ? std::make_shared<Simulation>(std::move(scene), *from)
                       : std::make_shared<Simulation>(std::move(scene));
+    if (!fresh->previewFailure().empty()) emit noticeOccurred(QString::fromStdString(fresh->previewFailure()));
     replace(std::move(fresh));
     sendSnapshot();
     return true;
@@ -241,8 +242,11 @@ void SimulationWorker::stepOnce() {
   if (!m_running.load()) return;  // paused or cancelled between two steps (finishCancel shows a cancel)
   auto simulation = current();
   if (!simulation) return;
+  const bool hadFailure = !simulation->previewFailure().empty();
   const StepReport report = simulation->step();
   emit stepReported(report);
+  if (!hadFailure && !simulation->previewFailure().empty())
+    emit noticeOccurred(QString::fromStdString(simulation->previewFailure()));
   updateStage();
   if (report.status != StepStatus::Cancelled) publishResumeState();
   if (report.status == StepStatus::Cancelled) {

@@ -110,8 +110,9 @@ class Simulation {
   Eigen::MatrixX3d positions() const;  // |V| x 3, metres
   double time() const;
   int steps() const { return m_steps; }
-  // Full pipeline: why the preview was given up (solver.preview.failure_strain) and the drape started from the
-  // placed garment instead, at scene time 0; empty while it was not.
+  // Why the preview was given up (solver.preview.failure_strain) and the drape started from the placed garment
+  // instead, at scene time 0: in the full pipeline, or when a drape was to start from a torn preview state
+  // (ResumeState::previewPositions); empty while it was not.
   const std::string& previewFailure() const { return m_previewFailure; }
   // Contact thickness the solvers use, metres (contact.thickness, else the thickest fabric, at least 2 mm).
   double contactThickness() const;
@@ -145,6 +146,10 @@ class Simulation {
   // garment on the body (the preview's vertex contact lets the body through between vertices); its state is no
   // start for the drape, which starts from the placed garment instead.
   void failPreviewIfTorn(const StepReport& report);
+  // True (and previewFailure() says why) when a preview state with this largest triangle stretch, or these
+  // positions, is torn.
+  bool tornPreviewState(double maxStrain, double time);
+  bool tornPreviewState(const Eigen::MatrixX3d& positions, double time);
   // Starts the Newton drape from positions (|V| x 3; no rows = the placed garment) at scene time `time`.
   void startDrape(const Eigen::MatrixX3d& positions, double time);
 };

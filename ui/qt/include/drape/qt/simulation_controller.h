@@ -47,6 +47,7 @@ class SimulationController : public QObject {
   void runStateChanged(drape::qt::RunState state);
   void stageChanged(QString stage);
   void errorOccurred(QString message);
+  void noticeOccurred(QString message);
 
  private:
   QThread m_thread;

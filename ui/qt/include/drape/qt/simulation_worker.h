@@ -86,6 +86,9 @@ class SimulationWorker : public QObject {
   void stageChanged(QString stage);
   // A diverged step or a failed rebuild: shown to the user; the last good state is kept.
   void errorOccurred(QString message);
+  // Something the user should know that needs no answer: a torn preview given up for a drape from the placed
+  // garment (Simulation::previewFailure()).
+  void noticeOccurred(QString message);
 
  private slots:
   void stepOnce();
