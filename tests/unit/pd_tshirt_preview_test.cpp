@@ -18,6 +18,24 @@
 #include "shared_data.h"
 
 namespace drape::test {
+namespace {
+
+struct OffBody {
+  int inside = 0;  // deeper inside the body than the contact thickness
+  int away = 0;    // more than 10 cm off it: a worn t-shirt hangs at most a few centimetres off the body
+};
+
+OffBody offBody(const collision::AvatarCollider& body, const Simulation& sim, const Eigen::MatrixX3d& x) {
+  OffBody count;
+  for (int v = 0; v < x.rows(); ++v) {
+    const double d = body.signedDistance(x.row(v).transpose());
+    count.inside += d < -sim.contactThickness();
+    count.away += d > 0.1;
+  }
+  return count;
+}
+
+}  // namespace
 
 // The first two tests keep the preview's start of stops 12-22 (no quasi-static start): their stretch and slide
 // bounds were set on it. With the default quasi-static start (stop 23) the sewn preview's shoulders stretch to 99 %
@@ -46,14 +64,9 @@ TEST(PdTshirtPreview, DefaultSceneStaysOnTheBodyAndHandsOverToTheDrape) {
   EXPECT_GT(steps, 10);
   const Eigen::MatrixX3d x = sim.positions();
   ASSERT_TRUE(x.allFinite());
-  int inside = 0, away = 0;
-  for (int v = 0; v < x.rows(); ++v) {
-    const double d = body.signedDistance(x.row(v).transpose());
-    inside += d < -sim.contactThickness();
-    away += d > 0.1;  // a worn t-shirt hangs at most a few centimetres off the body
-  }
-  EXPECT_EQ(inside, 0);
-  EXPECT_EQ(away, 0);
+  const OffBody off = offBody(body, sim, x);
+  EXPECT_EQ(off.inside, 0);
+  EXPECT_EQ(off.away, 0);
   // The full pipeline continues in the Newton drape and does not diverge there.
   for (int i = 0; i < 200 && !sim.finished(); ++i) ASSERT_NE(sim.step().status, StepStatus::Diverged);
   EXPECT_EQ(sim.stage(), "drape");
@@ -119,14 +132,9 @@ TEST(PdTshirtPreview, SewnShirtConvergesAtThePapersStepAndStaysPut) {
   EXPECT_LT(static_cast<double>(iterations) / steps, 5.0);
   EXPECT_LT(meanDrop, 0.015);
   EXPECT_LT(worstStrain, 0.6);
-  int inside = 0, away = 0;
-  for (int v = 0; v < x.rows(); ++v) {
-    const double d = body.signedDistance(x.row(v).transpose());
-    inside += d < -sim.contactThickness();
-    away += d > 0.1;
-  }
-  EXPECT_EQ(inside, 0);
-  EXPECT_EQ(away, 0);
+  const OffBody off = offBody(body, sim, x);
+  EXPECT_EQ(off.inside, 0);
+  EXPECT_EQ(off.away, 0);
 }
 
 // Stop 23: without the quasi-static start, the stitches' pull of the first steps, carried on as velocity, threw the
@@ -166,14 +174,9 @@ TEST(PdTshirtPreview, QuasiStaticStartKeepsTheBackHemDown) {
   EXPECT_LT(worstStrain, 1.2);  // 99 % at the shoulders (see above)
   const Eigen::MatrixX3d x = sim.positions();
   ASSERT_TRUE(x.allFinite());
-  int inside = 0, away = 0;
-  for (int v = 0; v < x.rows(); ++v) {
-    const double d = body.signedDistance(x.row(v).transpose());
-    inside += d < -sim.contactThickness();
-    away += d > 0.1;
-  }
-  EXPECT_EQ(inside, 0);
-  EXPECT_EQ(away, 0);
+  const OffBody off = offBody(body, sim, x);
+  EXPECT_EQ(off.inside, 0);
+  EXPECT_EQ(off.away, 0);
   for (int i = 0; i < 50 && !sim.finished(); ++i) ASSERT_NE(sim.step().status, StepStatus::Diverged);
   EXPECT_EQ(sim.stage(), "drape");
 }
@@ -241,20 +244,15 @@ TEST(PdTshirtPreview, FineShirtIsSewnOnACoarserMeshAndCarriedOver) {
   Eigen::VectorXd stretch = triangleStretch(sim.garment().rest, x, sim.garment().triangles);
   std::sort(stretch.begin(), stretch.end());
   const double p99 = stretch[static_cast<Eigen::Index>(0.99 * (stretch.size() - 1))];
-  int inside = 0, away = 0;
-  for (int v = 0; v < x.rows(); ++v) {
-    const double d = body.signedDistance(x.row(v).transpose());
-    inside += d < -sim.contactThickness();
-    away += d > 0.1;
-  }
+  const OffBody off = offBody(body, sim, x);
   std::printf("[ PdTshirtPreview ] 1 cm shirt: carried over at t = %.3f s (largest stitch gap %.2f mm), sewn at %.3f "
               "s; at t = %.3f s after %d steps (%d capped): stretch p99 %.0f %%, largest %.0f %%\n", handover,
               1e3 * gapAtHandover, sewnAt, time, steps, capped, 100.0 * p99, 100.0 * stretch[stretch.size() - 1]);
   EXPECT_LT(p99, 0.4);
   EXPECT_LT(stretch[stretch.size() - 1], 1.2);
   EXPECT_LE(capped, steps / 10);
-  EXPECT_EQ(inside, 0);
-  EXPECT_EQ(away, 0);
+  EXPECT_EQ(off.inside, 0);
+  EXPECT_EQ(off.away, 0);
 }
 
 }  // namespace drape::test
