@@ -130,7 +130,11 @@ void Simulation::build(const ResumeState* from) {
     m_solver->preview = std::make_unique<pd::PreviewSolver>(model, previewSettingsFrom(m_scene), m_solver->collider);
   } else if (from && from->stage == "drape") {
     m_resumed = from->previewPositions.rows() > 0;  // else the drape had started from the placed garment
-    if (m_resumed && tornPreviewState(from->previewPositions, from->previewTime)) m_resumed = false;
+    if (m_resumed) {
+      const Eigen::VectorXd stretch = triangleStretch(m_garment.rest, from->previewPositions, m_garment.triangles);
+      m_previewFailure = tearReason(stretch.size() ? stretch.maxCoeff() : 0.0, from->previewTime);
+      m_resumed = m_previewFailure.empty();
+    }
     startDrape(m_resumed ? from->previewPositions : Eigen::MatrixX3d(), m_resumed ? from->previewTime : 0.0);
   } else if (runsPreview) {
     m_resumed = false;
@@ -228,24 +232,20 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
   m_atRest = false;
 }
 
-bool Simulation::tornPreviewState(double maxStrain, double time) {
+std::string Simulation::tearReason(double maxStrain, double time) const {
   const double limit = m_scene.settings.number("solver.preview.failure_strain");
-  if (limit <= 0.0 || maxStrain <= limit) return false;
+  if (limit <= 0.0 || maxStrain <= limit) return "";
   char message[200];
   std::snprintf(message, sizeof message,
                 "the preview stretched a triangle to %.0f %% at t = %.3f s (the body passed through the cloth); "
                 "the drape starts from the placed garment", 100.0 * maxStrain, time);
-  m_previewFailure = message;
-  return true;
-}
-
-bool Simulation::tornPreviewState(const Eigen::MatrixX3d& positions, double time) {
-  const Eigen::VectorXd stretch = triangleStretch(m_garment.rest, positions, m_garment.triangles);
-  return tornPreviewState(stretch.size() ? stretch.maxCoeff() : 0.0, time);
+  return message;
 }
 
 void Simulation::failPreviewIfTorn(const StepReport& report) {
-  if (m_scene.settings.text("solver.stage") == "preview" || !tornPreviewState(report.maxStrain, report.time)) return;
+  if (m_scene.settings.text("solver.stage") == "preview") return;
+  m_previewFailure = tearReason(report.maxStrain, report.time);
+  if (m_previewFailure.empty()) return;
   m_solver->assembly.reset();
   startDrape(Eigen::MatrixX3d(), 0.0);
 }

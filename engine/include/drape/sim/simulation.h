@@ -146,10 +146,9 @@ class Simulation {
   // garment on the body (the preview's vertex contact lets the body through between vertices); its state is no
   // start for the drape, which starts from the placed garment instead.
   void failPreviewIfTorn(const StepReport& report);
-  // True (and previewFailure() says why) when a preview state with this largest triangle stretch, or these
-  // positions, is torn.
-  bool tornPreviewState(double maxStrain, double time);
-  bool tornPreviewState(const Eigen::MatrixX3d& positions, double time);
+  // Why a preview state at scene time `time` whose largest triangle stretch is maxStrain is torn (past
+  // solver.preview.failure_strain); empty when it is not.
+  std::string tearReason(double maxStrain, double time) const;
   // Starts the Newton drape from positions (|V| x 3; no rows = the placed garment) at scene time `time`.
   void startDrape(const Eigen::MatrixX3d& positions, double time);
 };
