@@ -163,6 +163,32 @@ TEST(PdContactTarget, PlaneTargetIsTheProjectionOntoTheStartHalfSpace) {
   EXPECT_LT((a.targets.row(0) - b.targets.row(0)).norm(), 1e-3);
 }
 
+TEST(PdContactTarget, DofStartingDeepInsideIsPushedOutToTheClosestSurface) {
+  // A garment placed through the body: vertices start inside, beyond the contact reach (thickness + margin,
+  // 2.4 cm), and the collision-free solve carries them deeper. Closest surface: the slab's top (y = 0).
+  for (const ContactTargetKind kind : {ContactTargetKind::Reproject, ContactTargetKind::StepPlanes}) {
+    SCOPED_TRACE(kind == ContactTargetKind::Reproject ? "reproject" : "step planes");
+    AvatarContactOptions o;
+    o.targets = kind;
+    o.thickness = 0.004;
+    o.margin = 0.02;
+    AvatarContacts contacts(slab(), o);
+    // 5 cm deep (found by the step's first query, but deeper than the reach at the collision-free position).
+    const Eigen::Vector3d start(0.1, -0.05, 0.2);
+    ContactSet c = oneContact(contacts, start, start, Eigen::Vector3d(0.1, -0.06, 0.2));
+    ASSERT_EQ(c.size(), 1);
+    EXPECT_LT((c.targets.row(0) - Eigen::RowVector3d(0.1, 0.004, 0.2)).norm(), 1e-9);
+    // 9 cm deep (beyond the step's first query too: it took such a DOF for one far outside).
+    const Eigen::Vector3d deep(-0.2, -0.09, 0.1);
+    c = oneContact(contacts, deep, deep, deep);
+    ASSERT_EQ(c.size(), 1);
+    EXPECT_LT((c.targets.row(0) - Eigen::RowVector3d(-0.2, 0.004, 0.1)).norm(), 1e-9);
+    // Far outside: no constraint.
+    const Eigen::Vector3d far(-0.2, 0.3, 0.1);
+    EXPECT_EQ(oneContact(contacts, far, far, Eigen::Vector3d(-0.2, 0.29, 0.1)).size(), 0);
+  }
+}
+
 TEST(PdContactTarget, CreaseTargetLiesInBothHalfSpaces) {
   // A vertex in the valley's crease, pushed down into it: the first version jumps to one side's surface (inside
   // the other side's thickness); the half-spaces put it thickness away from both sides.

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <limits>
 
 #include <tbb/parallel_for.h>
 
@@ -32,11 +33,13 @@ void AvatarContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matri
   const double reach = m_options.thickness + m_options.margin;
   // Beyond the candidates' reach, distances are bounded up to this much more (a query radius: larger costs more).
   constexpr double kBoundSlack = 0.05;
+  constexpr double kUnbounded = std::numeric_limits<double>::infinity();
   std::vector<char> near(nf, 0);
   m_bound.assign(nf, 0.0f);
   m_freeStart.resize(nf, 3);
   m_freePredicted.resize(nf, 3);
   if (static_cast<int>(m_hint.size()) != nf) m_hint.assign(nf, -1);
+  m_startInside.assign(nf, 0);
   if (m_queriedAt.rows() != nf) {  // first step (or another set of DOFs): nothing to carry over
     m_queriedAt.resize(nf, 3);
     m_queriedBound.assign(nf, -1.0);
@@ -60,8 +63,12 @@ void AvatarContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matri
       }
     }
     collision::SurfacePoint sp;
-    const bool found = m_collider->closest(start.row(v).transpose(), sp, watch + kBoundSlack, m_hint[d]);
+    // Nothing within the radius: far outside, or deep inside (a garment placed through the body); the unbounded
+    // query tells which (and, outside, gives a bound that lasts longer).
+    const bool found = m_collider->closest(start.row(v).transpose(), sp, watch + kBoundSlack, m_hint[d]) ||
+                       m_collider->closest(start.row(v).transpose(), sp, kUnbounded, m_hint[d]);
     if (found) m_hint[d] = sp.triangle;
+    m_startInside[d] = found && sp.signedDistance < 0.0;
     near[d] = found && sp.signedDistance < watch;
     m_queriedAt.row(d) = start.row(v);
     m_queriedBound[d] = found ? std::max(sp.signedDistance, 0.0) : watch + kBoundSlack;
@@ -100,11 +107,12 @@ int AvatarContacts::firstCrossing(const Eigen::Vector3d& p0, const Eigen::Vector
 }
 
 char AvatarContacts::constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& z,
-                               Eigen::Vector3d& target, Eigen::Vector3d& normal, int& hint) const {
+                               bool startInside, Eigen::Vector3d& target, Eigen::Vector3d& normal, int& hint) const {
   const double thickness = m_options.thickness;
   const double reach = thickness + m_options.margin;
   collision::SurfacePoint sp;
-  const bool near = m_collider->closest(p1, sp, reach, hint);
+  // From inside, the position may be deeper than the reach: then the closest surface point at any distance.
+  const bool near = m_collider->closest(p1, sp, reach, hint) || (startInside && m_collider->closest(p1, sp));
   if (near) hint = sp.triangle;
   const double travel = (p1 - p0).norm();
   // A segment shorter than the end's distance to the surface cannot have crossed it.
@@ -178,7 +186,8 @@ char AvatarContacts::constrainToPlanes(int d, const Eigen::Vector3d& x, Eigen::V
   };
   // The half-space of the start position: looked for (within reach of the segment start -> x) until found.
   if (m_options.ccd && planes.count == 0 && !planes.started) {
-    const double radius = reach + (x - s).norm();
+    const double radius =
+        m_startInside[d] ? std::numeric_limits<double>::infinity() : reach + (x - s).norm();
     collision::SurfacePoint sp;
     if (m_collider->closest(s, sp, radius)) {
       addPlane(sp.closest, sp.normal);
@@ -259,8 +268,8 @@ AvatarContactStats AvatarContacts::addConstraints(const Eigen::MatrixX3d& xFree,
     }
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
     kind[i] = planes ? constrainToPlanes(d, x, target[i], added[i])
-                     : constrain(m_freeStart.row(d).transpose(), x, m_freePredicted.row(d).transpose(), target[i],
-                                 normal, m_hint[d]);
+                     : constrain(m_freeStart.row(d).transpose(), x, m_freePredicted.row(d).transpose(),
+                                 m_startInside[d] != 0, target[i], normal, m_hint[d]);
     if (!m_options.holdTargets || !kind[i]) return;
     if (m_heldKind[d]) {  // StepPlanes
       target[i] = m_held[d];

@@ -74,7 +74,9 @@ class AvatarContacts {
   // distance to the collider (internal forces, e.g. stitches closing a seam, can move a vertex much farther than
   // its inertial prediction: addConstraints watches those too). A DOF's bound is carried over from its last query,
   // less the distance it has moved since, while that still keeps it out of the candidates; only then is it queried
-  // again. The same freeVertices are expected from step to step (a different count starts afresh).
+  // again. The same freeVertices are expected from step to step (a different count starts afresh). A DOF whose
+  // start is inside the collider, at any depth (a garment placed through the body), is a candidate, and its
+  // collision-free positions are then looked up at any depth too: it is pushed out to the closest surface.
   void beginStep(const Eigen::MatrixX3d& start, const Eigen::MatrixX3d& predicted,
                  const std::vector<int>& freeVertices);
   bool hasCandidates() const { return !m_candidates.empty(); }
@@ -107,7 +109,8 @@ class AvatarContacts {
   // 1 proximity, 2 CCD, +4 held by static friction. Reproject mode; p0 start, p1 collision-free position, z
   // inertial prediction; normal: the unit contact normal the target was pushed along.
   // hint: the DOF's last closest collider triangle (updated; see AvatarCollider::closest).
-  char constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& z,
+  // startInside: p0 is inside the collider (then p1 is looked up at any depth, not only within the reach).
+  char constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& z, bool startInside,
                  Eigen::Vector3d& target, Eigen::Vector3d& normal, int& hint) const;
   // StepPlanes mode: the same for free DOF d at collision-free position x (adds to m_planes[d]); added: set to
   // the number of half-spaces added.
@@ -129,6 +132,7 @@ class AvatarContacts {
   Eigen::MatrixX3d m_queriedAt;                // per free DOF: where its distance was last queried (beginStep)
   std::vector<double> m_queriedBound;          // per free DOF: the bound found there; -1 = never queried
   std::vector<int> m_hint;                     // per free DOF: its last closest collider triangle, -1 = none yet
+  std::vector<char> m_startInside;             // per free DOF: its start is inside the collider (any depth)
   std::vector<Eigen::Vector3d> m_held;         // per free DOF: target held in this step (holdTargets)
   std::vector<Eigen::Vector3d> m_heldNormal;   // per free DOF: the held target's contact normal (Reproject)
   std::vector<char> m_heldKind;                // per free DOF: its kind, 0 = none held
