@@ -35,6 +35,7 @@ Snapshot stageSnapshot(Scene scene, std::ostream& out) {
   }
   out << "render: simulated " << simulation.time() << " s in " << simulation.steps() << " steps ("
       << toString(last.status) << (last.atRest ? ", at rest" : "") << ")\n";
+  if (!simulation.previewFailure().empty()) out << "render: " << simulation.previewFailure() << "\n";
   return simulation.snapshot();
 }
 

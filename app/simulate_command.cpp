@@ -77,6 +77,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
     nlohmann::json perStep = nlohmann::json::array();
     int domains = 0;
     std::string lastStage = simulation.stage();
+    std::string lastFailure;  // simulation.previewFailure() as last printed
     std::string status;  // Diverged or Cancelled from a step, else why the run finished
     double nextPrint = 0.0;
     StepReport last;
@@ -86,8 +87,11 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
       domains = std::max(domains, last.domains);
       if (simulation.stage() != lastStage) {
         out << "  stage " << lastStage << " -> " << simulation.stage() << " at t=" << last.time << " s\n";
-        if (!simulation.previewFailure().empty()) out << "  " << simulation.previewFailure() << "\n";
         lastStage = simulation.stage();
+      }
+      if (simulation.previewFailure() != lastFailure) {  // a torn preview: given up, or (preview alone) going on
+        lastFailure = simulation.previewFailure();
+        out << "  " << lastFailure << "\n";
       }
       if (last.status == StepStatus::Diverged || last.status == StepStatus::Cancelled) {
         status = toString(last.status);

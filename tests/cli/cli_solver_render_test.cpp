@@ -110,6 +110,20 @@ TEST(CliSimulate, TornPreviewIsReportedAndTheDrapeStartsFromThePlacedGarment) {
   EXPECT_LT(steps[1].at("time").get<double>(), 0.001);  // the drape's clock starts again at 0
 }
 
+TEST(CliSimulate, TornPreviewAloneIsReportedAndGoesOn) {
+  const auto stats = kScratch / "torn_alone.json";
+  auto r = drape("--simulate " + asset("scenes/default.json") + " --solver preview --set solver.preview.failure_strain=2" +
+                 " --max-sim-time 0.004 -o " + quote((kScratch / "torn_alone.obj").string()) + " --stats " +
+                 quote(stats.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("only the drape's can be trusted"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(readWhole(stats));
+  EXPECT_NE(j.at("preview_failure").get<std::string>().find("the body passed through the cloth"), std::string::npos);
+  const auto& steps = j.at("per_step");
+  ASSERT_GE(steps.size(), 2u);
+  for (const auto& s : steps) EXPECT_EQ(s.at("stage"), "preview");
+}
+
 TEST(CliRender, WritesPngOfRequestedSize) {
   const auto png = kScratch / "default.png";
   std::filesystem::remove(png);

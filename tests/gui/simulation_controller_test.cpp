@@ -227,5 +227,27 @@ TEST_F(SimulationControllerTest, TornPreviewIsGivenUpWithANotice) {
   EXPECT_TRUE(rec.errors.empty());
 }
 
+TEST_F(SimulationControllerTest, TornPreviewAloneGoesOnWithOneNotice) {
+  // The same torn step in a preview run on its own: the preview goes on, and the user is told once that its result
+  // is wrong.
+  qt::SceneState state;
+  state.input = assetsDir() / "scenes" / "default.json";
+  state.overrides["solver.stage"] = "preview";
+  state.overrides["solver.preview.failure_strain"] = "2";
+  qt::SimulationController controller;
+  Recorder rec;
+  rec.attach(controller);
+  controller.setSimulation(std::make_shared<Simulation>(qt::buildScene(state)));
+  ASSERT_TRUE(waitUntil([&] { return !rec.snapshots.empty(); }));
+  controller.start();
+  ASSERT_TRUE(waitUntil([&] { return rec.reports.size() >= 3; }, 20000));
+  controller.pause();
+  ASSERT_TRUE(waitUntil([&] { return controller.runState() == qt::RunState::Paused; }, 20000));
+  ASSERT_EQ(rec.notices.size(), 1u);
+  EXPECT_TRUE(rec.notices.front().contains("only the drape's can be trusted")) << rec.notices.front().toStdString();
+  for (const StepReport& r : rec.reports) EXPECT_EQ(r.stage, "preview");
+  EXPECT_TRUE(rec.errors.empty());
+}
+
 }  // namespace
 }  // namespace drape::test

@@ -105,6 +105,29 @@ TEST(PipelineHandoff, TornPreviewIsGivenUpForTheDrapeFromThePlacedGarment) {
   EXPECT_TRUE(kept.previewFailure().empty());
 }
 
+TEST(PipelineHandoff, TornPreviewAloneGoesOnAndSaysItsResultIsWrong) {
+  // The same torn first step, in a preview run on its own (the GUI's Preview, drape --simulate --solver preview):
+  // nothing to fall back to, so the preview goes on, and previewFailure() says from that step on, once, that its
+  // result is wrong.
+  SceneRequest request;
+  request.input = assetsDir() / "scenes" / "default.json";
+  request.overrides = {{"solver.stage", "preview"}, {"solver.preview.failure_strain", "2"}};
+  Simulation sim(loadScene(request));
+  ASSERT_TRUE(sim.previewFailure().empty());
+  const StepReport first = sim.step();
+  ASSERT_GT(first.maxStrain, 2.0);
+  EXPECT_EQ(sim.stage(), "preview");
+  EXPECT_GT(sim.time(), 0.0);
+  const std::string said = sim.previewFailure();
+  EXPECT_NE(said.find("the body passed through the cloth"), std::string::npos) << said;
+  EXPECT_NE(said.find("only the drape's can be trusted"), std::string::npos) << said;
+  EXPECT_EQ(said.find("the drape starts from the placed garment"), std::string::npos) << said;
+  // Later steps (torn or not) keep the first step's message.
+  sim.step();
+  EXPECT_EQ(sim.stage(), "preview");
+  EXPECT_EQ(sim.previewFailure(), said);
+}
+
 TEST(PipelineHandoff, DrapeAskedToStartFromATornPreviewStateStartsFromThePlacedGarment) {
   // What the GUI's Drape button (and an edit during a drape) hands over: a preview state to start the drape from.
   Simulation preview(coarseTablecloth({{"solver.stage", "preview"}}));

@@ -76,7 +76,7 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"solver.preview.failure_strain", T::Number, "5", "",
        "a preview triangle stretched past this strain (5 = 6x its rest length) means the body went through the "
        "cloth: the full pipeline, or a drape asked to start from that preview state, starts the drape from the "
-       "placed garment instead (0: never)", 0, 1e6},
+       "placed garment instead; a preview run alone goes on and says its result is wrong (0: never)", 0, 1e6},
       {"solver.preview.relaxation_time", T::Number, "0.05", "s",
        "velocities zeroed after every step until this scene time (quasi-static assembly)", 0, 1e4},
       {"solver.preview.sd_iterations", T::Integer, "1", "", "dual steepest-descent updates before PCG (eq. 24)", 1,

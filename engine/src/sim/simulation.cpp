@@ -232,20 +232,23 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
   m_atRest = false;
 }
 
-std::string Simulation::tearReason(double maxStrain, double time) const {
+std::string Simulation::tearReason(double maxStrain, double time, bool previewGoesOn) const {
   const double limit = m_scene.settings.number("solver.preview.failure_strain");
   if (limit <= 0.0 || maxStrain <= limit) return "";
-  char message[200];
+  char message[300];
   std::snprintf(message, sizeof message,
-                "the preview stretched a triangle to %.0f %% at t = %.3f s (the body passed through the cloth); "
-                "the drape starts from the placed garment", 100.0 * maxStrain, time);
+                "the preview stretched a triangle to %.0f %% at t = %.3f s (the body passed through the cloth); %s",
+                100.0 * maxStrain, time,
+                previewGoesOn ? "the preview goes on, but its result is wrong: only the drape's can be trusted"
+                              : "the drape starts from the placed garment");
   return message;
 }
 
 void Simulation::failPreviewIfTorn(const StepReport& report) {
-  if (m_scene.settings.text("solver.stage") == "preview") return;
-  m_previewFailure = tearReason(report.maxStrain, report.time);
-  if (m_previewFailure.empty()) return;
+  const bool previewAlone = m_scene.settings.text("solver.stage") == "preview";
+  if (previewAlone && !m_previewFailure.empty()) return;  // said once, at the first torn step
+  m_previewFailure = tearReason(report.maxStrain, report.time, previewAlone);
+  if (m_previewFailure.empty() || previewAlone) return;
   m_solver->assembly.reset();
   startDrape(Eigen::MatrixX3d(), 0.0);
 }

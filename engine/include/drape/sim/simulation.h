@@ -112,7 +112,9 @@ class Simulation {
   int steps() const { return m_steps; }
   // Why the preview was given up (solver.preview.failure_strain) and the drape started from the placed garment
   // instead, at scene time 0: in the full pipeline, or when a drape was to start from a torn preview state
-  // (ResumeState::previewPositions); empty while it was not.
+  // (ResumeState::previewPositions). A preview run alone (solver.stage preview) is not given up: from its first
+  // torn step on, this says that its result is wrong and only the drape's can be trusted. Empty while none of this
+  // happened.
   const std::string& previewFailure() const { return m_previewFailure; }
   // Contact thickness the solvers use, metres (contact.thickness, else the thickest fabric, at least 2 mm).
   double contactThickness() const;
@@ -142,13 +144,15 @@ class Simulation {
   void finishAssembly();
   // The assembly mesh vertex that carries most of garment vertex `vertex` (-1 for -1).
   int assemblyVertex(int vertex) const;
-  // Full pipeline: a preview step that left a triangle stretched past solver.preview.failure_strain has torn the
-  // garment on the body (the preview's vertex contact lets the body through between vertices); its state is no
-  // start for the drape, which starts from the placed garment instead.
+  // A preview step that left a triangle stretched past solver.preview.failure_strain has torn the garment on the
+  // body (the preview's vertex contact lets the body through between vertices). Full pipeline: its state is no
+  // start for the drape, which starts from the placed garment instead. Preview alone: the preview goes on, and
+  // previewFailure() says, from the first such step on, that its result is not to be trusted.
   void failPreviewIfTorn(const StepReport& report);
   // Why a preview state at scene time `time` whose largest triangle stretch is maxStrain is torn (past
-  // solver.preview.failure_strain); empty when it is not.
-  std::string tearReason(double maxStrain, double time) const;
+  // solver.preview.failure_strain), ending with what follows (previewGoesOn: the preview alone goes on; else the
+  // drape starts from the placed garment); empty when it is not torn.
+  std::string tearReason(double maxStrain, double time, bool previewGoesOn = false) const;
   // Starts the Newton drape from positions (|V| x 3; no rows = the placed garment) at scene time `time`.
   void startDrape(const Eigen::MatrixX3d& positions, double time);
 };
