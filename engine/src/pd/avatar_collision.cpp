@@ -40,6 +40,8 @@ void AvatarContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matri
   m_freePredicted.resize(nf, 3);
   if (static_cast<int>(m_hint.size()) != nf) m_hint.assign(nf, -1);
   m_startInside.assign(nf, 0);
+  m_startClosest.resize(nf);
+  m_startNormal.resize(nf);
   if (m_queriedAt.rows() != nf) {  // first step (or another set of DOFs): nothing to carry over
     m_queriedAt.resize(nf, 3);
     m_queriedBound.assign(nf, -1.0);
@@ -69,6 +71,10 @@ void AvatarContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matri
                        m_collider->closest(start.row(v).transpose(), sp, kUnbounded, m_hint[d]);
     if (found) m_hint[d] = sp.triangle;
     m_startInside[d] = found && sp.signedDistance < 0.0;
+    if (m_startInside[d]) {
+      m_startClosest[d] = sp.closest;
+      m_startNormal[d] = sp.normal;
+    }
     near[d] = found && sp.signedDistance < watch;
     m_queriedAt.row(d) = start.row(v);
     m_queriedBound[d] = found ? std::max(sp.signedDistance, 0.0) : watch + kBoundSlack;
@@ -107,12 +113,13 @@ int AvatarContacts::firstCrossing(const Eigen::Vector3d& p0, const Eigen::Vector
 }
 
 char AvatarContacts::constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& z,
-                               bool startInside, Eigen::Vector3d& target, Eigen::Vector3d& normal, int& hint) const {
+                               bool startInside, const Eigen::Vector3d& startClosest,
+                               const Eigen::Vector3d& startNormal, Eigen::Vector3d& target, Eigen::Vector3d& normal,
+                               int& hint) const {
   const double thickness = m_options.thickness;
   const double reach = thickness + m_options.margin;
   collision::SurfacePoint sp;
-  // From inside, the position may be deeper than the reach: then the closest surface point at any distance.
-  const bool near = m_collider->closest(p1, sp, reach, hint) || (startInside && m_collider->closest(p1, sp));
+  const bool near = m_collider->closest(p1, sp, reach, hint);
   if (near) hint = sp.triangle;
   const double travel = (p1 - p0).norm();
   // A segment shorter than the end's distance to the surface cannot have crossed it.
@@ -131,6 +138,12 @@ char AvatarContacts::constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d&
   } else if (near && sp.signedDistance < thickness) {
     n = sp.normal;
     target = sp.closest + thickness * n;
+    kind = 1;
+  } else if (!near && startInside) {
+    // Started inside and now deeper than the reach: back out through the start's closest surface, the side it
+    // is nearest to (for a vertex that went in during the last step, the side it came from).
+    n = startNormal;
+    target = p1 + std::max(thickness - (p1 - startClosest).dot(n), 0.0) * n;
     kind = 1;
   } else {
     return 0;
@@ -269,7 +282,8 @@ AvatarContactStats AvatarContacts::addConstraints(const Eigen::MatrixX3d& xFree,
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
     kind[i] = planes ? constrainToPlanes(d, x, target[i], added[i])
                      : constrain(m_freeStart.row(d).transpose(), x, m_freePredicted.row(d).transpose(),
-                                 m_startInside[d] != 0, target[i], normal, m_hint[d]);
+                                 m_startInside[d] != 0, m_startClosest[d], m_startNormal[d], target[i], normal,
+                                 m_hint[d]);
     if (!m_options.holdTargets || !kind[i]) return;
     if (m_heldKind[d]) {  // StepPlanes
       target[i] = m_held[d];

@@ -75,8 +75,9 @@ class AvatarContacts {
   // its inertial prediction: addConstraints watches those too). A DOF's bound is carried over from its last query,
   // less the distance it has moved since, while that still keeps it out of the candidates; only then is it queried
   // again. The same freeVertices are expected from step to step (a different count starts afresh). A DOF whose
-  // start is inside the collider, at any depth (a garment placed through the body), is a candidate, and its
-  // collision-free positions are then looked up at any depth too: it is pushed out to the closest surface.
+  // start is inside the collider, at any depth (a garment placed through the body), is a candidate; where its
+  // collision-free position is deeper than the reach, it is pushed back out through the tangent plane at its
+  // start's closest surface point.
   void beginStep(const Eigen::MatrixX3d& start, const Eigen::MatrixX3d& predicted,
                  const std::vector<int>& freeVertices);
   bool hasCandidates() const { return !m_candidates.empty(); }
@@ -109,9 +110,11 @@ class AvatarContacts {
   // 1 proximity, 2 CCD, +4 held by static friction. Reproject mode; p0 start, p1 collision-free position, z
   // inertial prediction; normal: the unit contact normal the target was pushed along.
   // hint: the DOF's last closest collider triangle (updated; see AvatarCollider::closest).
-  // startInside: p0 is inside the collider (then p1 is looked up at any depth, not only within the reach).
+  // startInside: p0 is inside the collider, with closest surface point startClosest and outward normal
+  // startNormal; p1 deeper than the reach is then pushed back out through that point's tangent plane.
   char constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& z, bool startInside,
-                 Eigen::Vector3d& target, Eigen::Vector3d& normal, int& hint) const;
+                 const Eigen::Vector3d& startClosest, const Eigen::Vector3d& startNormal, Eigen::Vector3d& target,
+                 Eigen::Vector3d& normal, int& hint) const;
   // StepPlanes mode: the same for free DOF d at collision-free position x (adds to m_planes[d]); added: set to
   // the number of half-spaces added.
   char constrainToPlanes(int d, const Eigen::Vector3d& x, Eigen::Vector3d& target, int& added);
@@ -133,6 +136,8 @@ class AvatarContacts {
   std::vector<double> m_queriedBound;          // per free DOF: the bound found there; -1 = never queried
   std::vector<int> m_hint;                     // per free DOF: its last closest collider triangle, -1 = none yet
   std::vector<char> m_startInside;             // per free DOF: its start is inside the collider (any depth)
+  std::vector<Eigen::Vector3d> m_startClosest;  // per free DOF inside at its start: closest surface point
+  std::vector<Eigen::Vector3d> m_startNormal;   // ... and the outward normal there
   std::vector<Eigen::Vector3d> m_held;         // per free DOF: target held in this step (holdTargets)
   std::vector<Eigen::Vector3d> m_heldNormal;   // per free DOF: the held target's contact normal (Reproject)
   std::vector<char> m_heldKind;                // per free DOF: its kind, 0 = none held
