@@ -203,22 +203,28 @@ TEST_F(SimulationControllerTest, ANewSimulationReplacesARunningOne) {
   EXPECT_EQ(controller.latestSnapshot()->time, 0.0);
 }
 
-TEST_F(SimulationControllerTest, TornPreviewIsGivenUpWithANotice) {
-  // The default scene's first preview step stretches a seam triangle by ~300 %, past a failure strain of 200 %:
-  // the full pipeline drapes from the placed garment instead, and the user is told.
+// The default scene with a failure strain of 200 %: its first preview step, which stretches a seam triangle by
+// ~300 %, counts as torn. Runs it in stage ("full" or "preview") until `reports` steps were reported, then pauses.
+void runTornDefaultScene(const std::string& stage, size_t reports, qt::SimulationController& controller,
+                         Recorder& rec) {
   qt::SceneState state;
   state.input = assetsDir() / "scenes" / "default.json";
-  state.overrides["solver.stage"] = "full";
+  state.overrides["solver.stage"] = stage;
   state.overrides["solver.preview.failure_strain"] = "2";
-  qt::SimulationController controller;
-  Recorder rec;
   rec.attach(controller);
   controller.setSimulation(std::make_shared<Simulation>(qt::buildScene(state)));
   ASSERT_TRUE(waitUntil([&] { return !rec.snapshots.empty(); }));
   controller.start();
-  ASSERT_TRUE(waitUntil([&] { return rec.reports.size() >= 2; }, 20000));
+  ASSERT_TRUE(waitUntil([&] { return rec.reports.size() >= reports; }, 20000));
   controller.pause();
   ASSERT_TRUE(waitUntil([&] { return controller.runState() == qt::RunState::Paused; }, 20000));
+}
+
+TEST_F(SimulationControllerTest, TornPreviewIsGivenUpWithANotice) {
+  // The full pipeline drapes from the placed garment instead, and the user is told.
+  qt::SimulationController controller;
+  Recorder rec;
+  runTornDefaultScene("full", 2, controller, rec);
   ASSERT_EQ(rec.notices.size(), 1u);
   EXPECT_TRUE(rec.notices.front().contains("the drape starts from the placed garment"))
       << rec.notices.front().toStdString();
@@ -228,21 +234,10 @@ TEST_F(SimulationControllerTest, TornPreviewIsGivenUpWithANotice) {
 }
 
 TEST_F(SimulationControllerTest, TornPreviewAloneGoesOnWithOneNotice) {
-  // The same torn step in a preview run on its own: the preview goes on, and the user is told once that its result
-  // is wrong.
-  qt::SceneState state;
-  state.input = assetsDir() / "scenes" / "default.json";
-  state.overrides["solver.stage"] = "preview";
-  state.overrides["solver.preview.failure_strain"] = "2";
+  // A preview run on its own goes on, and the user is told once that its result is wrong.
   qt::SimulationController controller;
   Recorder rec;
-  rec.attach(controller);
-  controller.setSimulation(std::make_shared<Simulation>(qt::buildScene(state)));
-  ASSERT_TRUE(waitUntil([&] { return !rec.snapshots.empty(); }));
-  controller.start();
-  ASSERT_TRUE(waitUntil([&] { return rec.reports.size() >= 3; }, 20000));
-  controller.pause();
-  ASSERT_TRUE(waitUntil([&] { return controller.runState() == qt::RunState::Paused; }, 20000));
+  runTornDefaultScene("preview", 3, controller, rec);
   ASSERT_EQ(rec.notices.size(), 1u);
   EXPECT_TRUE(rec.notices.front().contains("only the drape's can be trusted")) << rec.notices.front().toStdString();
   for (const StepReport& r : rec.reports) EXPECT_EQ(r.stage, "preview");
