@@ -84,7 +84,9 @@ TEST(PipelineHandoff, TornPreviewIsGivenUpForTheDrapeFromThePlacedGarment) {
   // garment at scene time 0 (with its initial relaxation), not from the preview's state.
   SceneRequest request;
   request.input = assetsDir() / "scenes" / "default.json";
-  request.overrides = {{"solver.stage", "full"}, {"solver.preview.failure_strain", "2"}};
+  request.overrides = {{"solver.stage", "full"},
+                       {"solver.preview.failure_strain", "2"},
+                       {"solver.preview.relaxation_time", "0"}};
   Simulation sim(loadScene(request));
   const Eigen::MatrixX3d placed = sim.positions();
   const StepReport first = sim.step();
@@ -103,6 +105,16 @@ TEST(PipelineHandoff, TornPreviewIsGivenUpForTheDrapeFromThePlacedGarment) {
   kept.step();
   EXPECT_EQ(kept.stage(), "preview");
   EXPECT_TRUE(kept.previewFailure().empty());
+
+  // With the default quasi-static start (0.05 s), the same overshoot falls inside it and is not counted either: the
+  // seams' first closing may overshoot there and recover (docs/BENCHMARKS.md, stop 24).
+  request.overrides = {{"solver.stage", "full"}, {"solver.preview.failure_strain", "2"}};
+  Simulation relaxing(loadScene(request));
+  const StepReport overshoot = relaxing.step();
+  ASSERT_GT(overshoot.maxStrain, 2.0);
+  ASSERT_LT(overshoot.time, relaxing.scene().settings.number("solver.preview.relaxation_time"));
+  EXPECT_EQ(relaxing.stage(), "preview");
+  EXPECT_TRUE(relaxing.previewFailure().empty());
 }
 
 TEST(PipelineHandoff, TornPreviewAloneGoesOnAndSaysItsResultIsWrong) {
@@ -111,7 +123,9 @@ TEST(PipelineHandoff, TornPreviewAloneGoesOnAndSaysItsResultIsWrong) {
   // result is wrong.
   SceneRequest request;
   request.input = assetsDir() / "scenes" / "default.json";
-  request.overrides = {{"solver.stage", "preview"}, {"solver.preview.failure_strain", "2"}};
+  request.overrides = {{"solver.stage", "preview"},
+                       {"solver.preview.failure_strain", "2"},
+                       {"solver.preview.relaxation_time", "0"}};
   Simulation sim(loadScene(request));
   ASSERT_TRUE(sim.previewFailure().empty());
   const StepReport first = sim.step();

@@ -144,8 +144,9 @@ class Simulation {
   void finishAssembly();
   // The assembly mesh vertex that carries most of garment vertex `vertex` (-1 for -1).
   int assemblyVertex(int vertex) const;
-  // A preview step that left a triangle stretched past solver.preview.failure_strain has torn the garment on the
-  // body (the preview's vertex contact lets the body through between vertices). Full pipeline: its state is no
+  // A preview step after the quasi-static start (solver.preview.relaxation_time) that left a triangle stretched past
+  // solver.preview.failure_strain has torn the garment on the body (the preview's vertex contact lets the body
+  // through between vertices). Full pipeline: its state is no
   // start for the drape, which starts from the placed garment instead. Preview alone: the preview goes on, and
   // previewFailure() says, from the first such step on, that its result is not to be trusted.
   void failPreviewIfTorn(const StepReport& report);
