@@ -80,8 +80,8 @@ TEST(PipelineHandoff, RelaxingPreviewIsNotSettledByItsZeroedVelocities) {
 
 TEST(PipelineHandoff, TornPreviewIsGivenUpForTheDrapeFromThePlacedGarment) {
   // The first preview step of the default scene stretches a triangle along the closing seams by about 300 %: with a
-  // failure strain of 200 % that counts as the body passing through the cloth, and the drape starts from the placed
-  // garment at scene time 0 (with its initial relaxation), not from the preview's state.
+  // failure strain of 200 % and no quasi-static start, that counts as the body passing through the cloth, and the
+  // drape starts from the placed garment at scene time 0 (with its initial relaxation), not from the preview's state.
   SceneRequest request;
   request.input = assetsDir() / "scenes" / "default.json";
   request.overrides = {{"solver.stage", "full"},

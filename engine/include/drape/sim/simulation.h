@@ -146,9 +146,9 @@ class Simulation {
   int assemblyVertex(int vertex) const;
   // A preview step after the quasi-static start (solver.preview.relaxation_time) that left a triangle stretched past
   // solver.preview.failure_strain has torn the garment on the body (the preview's vertex contact lets the body
-  // through between vertices). Full pipeline: its state is no
-  // start for the drape, which starts from the placed garment instead. Preview alone: the preview goes on, and
-  // previewFailure() says, from the first such step on, that its result is not to be trusted.
+  // through between vertices). Full pipeline: its state is no start for the drape, which starts from the placed
+  // garment instead. Preview alone: the preview goes on, and previewFailure() says, from the first such step on,
+  // that its result is not to be trusted.
   void failPreviewIfTorn(const StepReport& report);
   // Why a preview state at scene time `time` whose largest triangle stretch is maxStrain is torn (past
   // solver.preview.failure_strain), ending with what follows (previewGoesOn: the preview alone goes on; else the
