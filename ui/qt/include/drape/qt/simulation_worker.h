@@ -86,8 +86,8 @@ class SimulationWorker : public QObject {
   void stageChanged(QString stage);
   // A diverged step or a failed rebuild: shown to the user; the last good state is kept.
   void errorOccurred(QString message);
-  // Something the user should know that needs no answer: a torn preview given up for a drape from the placed
-  // garment (Simulation::previewFailure()).
+  // Something the user should know that needs no answer: a torn preview, given up for a drape from the placed
+  // garment, or (a preview run alone) going on with a result that is wrong (Simulation::previewFailure()).
   void noticeOccurred(QString message);
 
  private slots:
