@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCholesky>
+#include <array>
 #include <cstdio>
 #include <queue>
 #include <set>
@@ -175,4 +176,91 @@ TEST(CoarseSpace, SolverEngagesTheCoarseLevelOnlyWhereSolvesAreLong) {
   EXPECT_EQ(coarseSolves(10.0, 16, 30), 0) << "soft: short solves";
   EXPECT_EQ(coarseSolves(1e5, 16, 100000), 0) << "threshold never reached";
   EXPECT_GE(coarseSolves(10.0, 16, 0), 20) << "threshold 0: every solve, from the first";
+}
+
+// Self-contact (cloth folded onto itself) adds dynamic blocks between vertices that are far apart on the cloth, in
+// aggregates the static pattern does not join. The coarse matrix keeps only what falls on joined aggregates (the
+// header): it must equal the Galerkin product of that part, stay positive definite, and the two-level PCG must still
+// converge to the direct solve of the whole system.
+TEST(CoarseSpace, SelfContactBetweenDistantAggregatesKeepsTheTwoLevelPcgExact) {
+  const int n = 40;
+  const auto pairs = gridCouplings(n);
+  BlockMatrix a(n * n, pairs, true);
+  fillCloth(a, n, pairs, 1e4, 30.0);
+  // The grid folded along its middle row: vertex (i, j) of the lower half touches the triangle (i', j), (i', j + 1),
+  // (i' - 1, j) of the mirrored row i' = n - 1 - i, as the vertex-triangle contacts of self_contact.cpp (penalty
+  // Hessian k (w n)(w n)^T with w = (1, -b0, -b1, -b2), one call per unordered pair of stencil slots).
+  const Eigen::Vector3d normal(0.0, 0.0, 1.0);
+  const double k = 5e3;
+  int contacts = 0;
+  for (int i = 1; i < n / 2 - 1; i += 2)
+    for (int j = 0; j + 1 < n; j += 3) {
+      const int mirrored = n - 1 - i;
+      const std::array<int, 4> v = {i * n + j, mirrored * n + j, mirrored * n + j + 1, (mirrored - 1) * n + j};
+      const std::array<double, 4> w = {1.0, -0.5, -0.3, -0.2};
+      for (int s = 0; s < 4; ++s)
+        for (int t = s; t < 4; ++t) {
+          const Eigen::Matrix3d b = k * w[s] * w[t] * normal * normal.transpose();
+          if (v[s] == v[t])
+            a.addDynamicBlock(v[s], v[s], s == t ? b : Eigen::Matrix3d(b + b.transpose()));
+          else
+            a.addDynamicBlock(v[s], v[t], b);
+        }
+      ++contacts;
+    }
+  CoarseSpace coarse(a, 16);
+  const std::vector<int>& aggregate = coarse.aggregateOfRow();
+  auto aggregateOf = [&](int vertex) { return aggregate[a.internalIndex(vertex)]; };
+  // Aggregate pairs the static pattern joins, found independently of the coarse space's own bookkeeping.
+  std::set<std::pair<int, int>> joined;
+  for (int r = 0; r < a.numBlocks(); ++r)
+    for (int q = a.rowStart(r); q < a.rowStart(r + 1); ++q) joined.insert({aggregate[r], aggregate[a.colIndex(q)]});
+  int distant = 0;
+  for (const auto& e : a.dynamicEntries()) distant += !joined.count({aggregateOf(e.i), aggregateOf(e.j)});
+  ASSERT_GT(distant, contacts) << "the contacts must couple aggregates the static pattern does not join";
+  ASSERT_TRUE(coarse.factorize(a)) << "the coarse matrix must stay positive definite";
+
+  // Independent coarse matrix: P^T (static + the dynamic blocks on joined aggregates) P.
+  const int m = coarse.numAggregates();
+  std::vector<Eigen::Triplet<double>> t;
+  for (int v = 0; v < n * n; ++v)
+    for (int d = 0; d < 3; ++d) t.emplace_back(3 * v + d, 3 * aggregateOf(v) + d, 1.0);
+  Eigen::SparseMatrix<double> p(3 * n * n, 3 * m);
+  p.setFromTriplets(t.begin(), t.end());
+  BlockMatrix kept(n * n, pairs, true);
+  kept.setStaticValues(a.blocks());
+  for (const auto& e : a.dynamicEntries())
+    if (joined.count({aggregateOf(e.i), aggregateOf(e.j)})) kept.addDynamicBlock(e.i, e.j, e.block);
+  const Eigen::SparseMatrix<double> galerkin = p.transpose() * kept.toSparse() * p;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(galerkin);
+  ASSERT_EQ(ldlt.info(), Eigen::Success);
+  Eigen::VectorXd rc(3 * m);
+  for (Eigen::Index q = 0; q < rc.size(); ++q) rc(q) = std::sin(0.7 * q + 0.3);
+  Eigen::VectorXd e;
+  coarse.solve(rc, e);
+  const Eigen::VectorXd expected = ldlt.solve(rc);
+  EXPECT_LT((e - expected).norm(), 1e-10 * expected.norm());
+
+  // The two-level PCG on the whole system (every contact block) against CHOLMOD.
+  Eigen::VectorXd b(3 * n * n);
+  for (Eigen::Index q = 0; q < b.size(); ++q) b(q) = std::sin(0.013 * (q + 1)) + 0.1 * std::cos(0.7 * q);
+  LinearSolveOptions direct;
+  direct.kind = LinearSolverKind::Cholmod;
+  Eigen::VectorXd exact;
+  ASSERT_TRUE(solveLinear(a, b, exact, direct).ok);
+  const Eigen::SparseMatrix<double> s = a.toSparse();
+  ASSERT_LT((s * exact - b).norm(), 1e-10 * b.norm());
+  LinearSolveOptions o;
+  o.tolerance = 1e-8;
+  o.maxIterations = 5000;
+  Eigen::VectorXd x1, x2;
+  const LinearSolveResult one = solveLinear(a, b, x1, o);
+  o.coarse = &coarse;
+  const LinearSolveResult two = solveLinear(a, b, x2, o);
+  ASSERT_TRUE(one.ok && two.ok);
+  EXPECT_LT((s * x2 - b).norm(), 1e-8 * b.norm());
+  EXPECT_LT((x2 - exact).norm(), 1e-6 * exact.norm());
+  EXPECT_LT(two.iterations, one.iterations) << "block-Jacobi " << one.iterations;
+  std::printf("%d self contacts (%d dynamic blocks between unjoined aggregates): block-Jacobi %d PCG iterations, "
+              "two-level %d\n", contacts, distant, one.iterations, two.iterations);
 }
