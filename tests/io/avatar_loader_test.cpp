@@ -4,10 +4,16 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <fstream>
+#include <iterator>
+#include <sstream>
+#include <vector>
 #include <string>
 
+#include "drape/collision/avatar_collider.h"
 #include "drape/core/input_error.h"
 #include "drape/geometry/primitives.h"
 #include "shared_data.h"
@@ -137,6 +143,125 @@ TEST(AvatarLoaderTest, MeshesOfSeveralObjectsAreMergedAndWelded) {
   out << "o top\nusemtl b\nf 3 7 4\nf 4 7 8\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n";
   out.close();
   expectCube(loadAvatar(file), Eigen::Vector3d::Zero(), 0.5);
+}
+
+// The cube of avatar_two_objects.obj as OBJ text: its eight vertices (moved by offset), and its faces numbered from
+// base + 1, those listed in `flipped` (0-based) wound the other way.
+std::string cubeVertices(const Eigen::Vector3d& offset = Eigen::Vector3d::Zero()) {
+  std::ostringstream out;
+  for (int i = 0; i < 8; ++i)
+    out << "v " << offset.x() + (i & 1 ? 0.5 : 0) << " " << offset.y() + (i & 2 ? 0.5 : 0) << " "
+        << offset.z() + (i & 4 ? 0.5 : 0) << "\n";
+  return out.str();
+}
+
+std::string cubeFaces(const std::vector<int>& flipped, int base = 0) {
+  const int faces[12][3] = {{1, 3, 2}, {2, 3, 4}, {5, 6, 7}, {6, 8, 7}, {1, 2, 5}, {2, 6, 5},
+                            {3, 7, 4}, {4, 7, 8}, {1, 5, 3}, {3, 5, 7}, {2, 4, 6}, {4, 8, 6}};
+  std::ostringstream out;
+  for (int f = 0; f < 12; ++f) {
+    const bool turn = std::find(flipped.begin(), flipped.end(), f) != flipped.end();
+    out << "f " << base + faces[f][0] << " " << base + faces[f][turn ? 2 : 1] << " " << base + faces[f][turn ? 1 : 2]
+        << "\n";
+  }
+  return out.str();
+}
+
+std::filesystem::path writeObj(const std::string& name, const std::string& text) {
+  const auto file = test::testOutputDir() / name;
+  std::ofstream(file) << text;
+  return file;
+}
+
+// Bodies exported inside out (a mirroring transform) or with single faces flipped come out wound outward, with one
+// warning; the collider takes the inside of the body from the winding.
+TEST(AvatarLoaderTest, InsideOutCubeIsTurnedOutward) {
+  std::vector<int> all(12);
+  for (int f = 0; f < 12; ++f) all[f] = f;
+  const auto file = writeObj("avatar_inside_out.obj", cubeVertices() + cubeFaces(all));
+  Diagnostics diagnostics;
+  expectCube(loadAvatar(file, 1.0, &diagnostics), Eigen::Vector3d::Zero(), 0.5);
+  ASSERT_EQ(diagnostics.warnings().size(), 1u);
+  EXPECT_EQ(diagnostics.warnings()[0],
+            file.string() + ": 12 of 12 faces were wound inward and are turned outward (1 part was inside out)");
+}
+
+TEST(AvatarLoaderTest, SingleFlippedFacesAreTurnedToMatchTheirNeighbours) {
+  // Face 0 is the one the search starts from: the part is first made to agree with it, then turned over.
+  for (const std::vector<int>& flipped : {std::vector<int>{0}, std::vector<int>{5}, std::vector<int>{2, 9}}) {
+    SCOPED_TRACE(::testing::PrintToString(flipped));
+    const auto file = writeObj("avatar_flipped_faces.obj", cubeVertices() + cubeFaces(flipped));
+    Diagnostics diagnostics;
+    expectCube(loadAvatar(file, 1.0, &diagnostics), Eigen::Vector3d::Zero(), 0.5);
+    ASSERT_EQ(diagnostics.warnings().size(), 1u);
+    EXPECT_EQ(diagnostics.warnings()[0], file.string() + ": " + std::to_string(flipped.size()) +
+                                             " of 12 faces were wound inward and are turned outward");
+  }
+}
+
+TEST(AvatarLoaderTest, EachPartIsTurnedOnItsOwnAndSheetsKeepTheirWinding) {
+  std::vector<int> all(12);
+  for (int f = 0; f < 12; ++f) all[f] = f;
+  // An outward cube, an inside-out cube 1 m away, and a square sheet (encloses nothing) wound either way.
+  for (const char* sheet : {"f 17 18 19\nf 17 19 20\n", "f 17 19 18\nf 17 20 19\n"}) {
+    SCOPED_TRACE(sheet);
+    const std::string text = cubeVertices() + cubeVertices(Eigen::Vector3d(1.0, 0.0, 0.0)) +
+                             "v 0 -1 0\nv 1 -1 0\nv 1 -1 1\nv 0 -1 1\n" + cubeFaces({}) + cubeFaces(all, 8) + sheet;
+    const auto file = writeObj("avatar_two_cubes_and_sheet.obj", text);
+    Diagnostics diagnostics;
+    const TriangleMesh mesh = loadAvatar(file, 1.0, &diagnostics);
+    ASSERT_EQ(mesh.triangleCount(), 26);
+    TriangleMesh first, second;
+    first.vertices = second.vertices = mesh.vertices;
+    first.triangles = mesh.triangles.topRows(12);
+    second.triangles = mesh.triangles.middleRows(12, 12);
+    EXPECT_NEAR(signedVolume(first), 0.125, 1e-9);
+    EXPECT_NEAR(signedVolume(second), 0.125, 1e-9);
+    // The sheet's triangles are the file's last two (the loader keeps the face order).
+    const Eigen::Vector3d a = mesh.vertices.row(mesh.triangles(24, 0)).transpose();
+    const Eigen::Vector3d n = (mesh.vertices.row(mesh.triangles(24, 1)).transpose() - a)
+                                  .cross(mesh.vertices.row(mesh.triangles(24, 2)).transpose() - a);
+    EXPECT_NEAR(std::abs(n.y()), 1.0, 1e-12);
+    EXPECT_EQ(n.y() > 0.0, std::string(sheet).rfind("f 17 19 18", 0) == 0) << "the sheet keeps its winding";
+    ASSERT_EQ(diagnostics.warnings().size(), 1u);
+    EXPECT_EQ(diagnostics.warnings()[0],
+              file.string() + ": 12 of 26 faces were wound inward and are turned outward (1 part was inside out)");
+  }
+}
+
+// The library mannequin written inside out (every face reversed, as a mirroring export leaves it) loads as the same
+// body: the collider's signed distances agree everywhere. Before, the whole outside counted as inside the body and a
+// drape of the default t-shirt on it pulled the shirt into the torso (mean |z| 3.3 cm against 6.9 cm at 0.3 s).
+TEST(AvatarLoaderTest, InsideOutMannequinGivesTheSameSignedDistances) {
+  const auto original = test::assetsDir() / "avatars" / "female.obj";
+  std::ifstream in(original);
+  std::ostringstream flipped;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("f ", 0) == 0) {
+      std::istringstream corners(line.substr(2));
+      std::vector<std::string> c{std::istream_iterator<std::string>(corners), std::istream_iterator<std::string>()};
+      ASSERT_EQ(c.size(), 3u) << line;
+      flipped << "f " << c[0] << " " << c[2] << " " << c[1] << "\n";
+    } else {
+      flipped << line << "\n";
+    }
+  }
+  const auto file = writeObj("avatar_female_inside_out.obj", flipped.str());
+  Diagnostics diagnostics;
+  const collision::AvatarCollider turned(loadAvatar(file, 1.0, &diagnostics));
+  const collision::AvatarCollider body(loadAvatar(original));
+  ASSERT_EQ(diagnostics.warnings().size(), 1u);
+  EXPECT_NE(diagnostics.warnings()[0].find("(1 part was inside out)"), std::string::npos) << diagnostics.warnings()[0];
+  int inside = 0;
+  for (int i = 0; i < 400; ++i) {  // points on a grid through the torso and around it
+    const Eigen::Vector3d p(-0.3 + 0.6 * (i % 7) / 6.0, 0.9 + 0.6 * ((i / 7) % 8) / 7.0, -0.2 + 0.4 * (i / 56) / 7.0);
+    const double d = body.signedDistance(p);
+    EXPECT_NEAR(turned.signedDistance(p), d, 1e-12) << p.transpose();
+    inside += d < 0.0;
+  }
+  EXPECT_GT(inside, 20) << "some points lie inside the body";
+  EXPECT_LT(inside, 380) << "some lie outside";
 }
 
 TEST(AvatarLoaderTest, GarmentCodeMeanBody) {

@@ -15,6 +15,7 @@
 
 #include "avatar/obj_scan.h"
 #include "drape/core/input_error.h"
+#include "drape/geometry/mesh_orientation.h"
 
 namespace drape {
 namespace {
@@ -199,6 +200,15 @@ TriangleMesh loadAvatar(const std::filesystem::path& file, double unitsInMeter, 
     result.triangles.row(static_cast<Eigen::Index>(f)) << newIndex[t[0]], newIndex[t[1]], newIndex[t[2]];
   }
 
+  const OrientationRepair turned = orientOutward(result);
+  if (turned.facesTurned > 0 && diagnostics) {
+    diagnostics->warn(file.string() + ": " + std::to_string(turned.facesTurned) + " of " +
+                      std::to_string(result.triangleCount()) + " faces were wound inward and are turned outward" +
+                      (turned.partsInsideOut > 0 ? " (" + std::to_string(turned.partsInsideOut) + " part" +
+                                                       (turned.partsInsideOut == 1 ? " was" : "s were") +
+                                                       " inside out)"
+                                                 : std::string()));
+  }
   if (degenerate > 0 && diagnostics) {
     diagnostics->warn(file.string() + ": dropped " + std::to_string(degenerate) + " degenerate face" +
                       (degenerate == 1 ? "" : "s") + " (zero area or repeated vertex) of " + std::to_string(faceTotal));

@@ -13,8 +13,9 @@ namespace drape {
 // unitsInMeter: file units per metre (1 = metres, 100 = centimetres, 1000 = millimetres); must be > 0.
 // Node transforms are applied (multi-node glTF/FBX come out assembled), polygons are triangulated, all meshes
 // are merged, and corners at bitwise-equal positions are welded into one vertex (also across meshes), so a file
-// with two distinct vertices at the same point yields one. Unused vertices are dropped; triangle orientation is
-// kept. Errors ("<file>: ..."): file not found, not a regular file, cannot read mesh (assimp's reason), contains
+// with two distinct vertices at the same point yields one. Unused vertices are dropped. Faces wound inward (a
+// whole part inside out, or single faces against their neighbours) are turned outward (mesh_orientation.h) with
+// one warning. Errors ("<file>: ..."): file not found, not a regular file, cannot read mesh (assimp's reason), contains
 // no triangles, non-finite coordinate (OBJ: line and 1-based vertex number), face refers to a vertex out of range
 // (OBJ: line and face number). Degenerate faces (repeated vertex, zero area) are dropped with one warning in
 // diagnostics, if given.
