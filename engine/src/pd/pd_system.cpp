@@ -156,6 +156,7 @@ PdSystem::PdSystem(const newton::ClothModel& model, const PreviewSettings& setti
   std::vector<int> someTriangle(nv, 0);
   for (int t = nt - 1; t >= 0; --t)
     for (int k = 0; k < 3; ++k) someTriangle[model.triangles(t, k)] = t;
+  m_largestStretch = maxStretch;
   const double stitchWeight = settings.stitchWeight > 0.0 ? settings.stitchWeight : 10.0 * maxStretch;
   for (const auto& [a, b] : model.stitches) {
     if (a == b) continue;  // a dart tip sewn to itself: no term

@@ -158,15 +158,19 @@ PreviewSolver::PreviewSolver(const newton::ClothModel& model, const PreviewSetti
         partitionTriangles(model.triangles, nv, model.stitches, model.edgeStitches, im.domains, settings.seed);
     im.useLevel(0);
   });
+  // A contact outweighs the fabric and the stitches, however stiff the fabric (contactWeightFor).
+  const double stretch = im.system->largestStretch();
   if (im.collider)
     im.avatar = std::make_unique<AvatarContacts>(
-        im.collider, AvatarContactOptions{settings.contactThickness, settings.contactMargin, settings.contactWeight,
+        im.collider, AvatarContactOptions{settings.contactThickness, settings.contactMargin,
+                                          contactWeightFor(settings.contactWeight, stretch),
                                           settings.friction, settings.ccd, settings.holdContactTargets,
                                           settings.contactTargets, settings.frictionLoad});
   if (settings.selfCollision)
     im.cloth = std::make_unique<ClothContacts>(
         model.triangles, nv, model.stitches, im.system->dofOfVertex(),
-        ClothContactOptions{settings.contactThickness, settings.contactMargin, settings.selfContactWeight},
+        ClothContactOptions{settings.contactThickness, settings.contactMargin,
+                            contactWeightFor(settings.selfContactWeight, stretch)},
         model.edgeStitches);
   im.accumulator.reset(im.system->freeCount());
   toFlat(im.x, im.flatX);

@@ -56,6 +56,8 @@ class PdSystem {
   double shearLimit() const { return m_shearLimit; }
   // ShearModelKind::Stretch: pd-dd's strain constraint (see projectStrain).
   bool stretchHoldsShear() const { return m_stretchHoldsShear; }
+  // Largest warp or weft stretch stiffness of the model's fabrics, N/m (sets the default stitch weight).
+  double largestStretch() const { return m_largestStretch; }
 
   // K of eq. 3 over the free DOFs, |free| x |free|: M / h^2 plus every stencil.
   const Eigen::SparseMatrix<double>& matrix() const { return m_k; }
@@ -92,6 +94,7 @@ class PdSystem {
   StretchLimits m_warp, m_weft;
   double m_shearLimit = 0.0;
   bool m_stretchHoldsShear = false;
+  double m_largestStretch = 0.0;
   Eigen::SparseMatrix<double> m_k, m_kfp;
   std::vector<int> m_incOffsets, m_incTriangles;
   // Per incidence (vertex v, triangle t): w_c g(v, c) for both columns c of t's target, t's share of A^T B y at v.

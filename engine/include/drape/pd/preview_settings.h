@@ -68,7 +68,8 @@ struct PreviewSettings {
 
   // Contact (pd-dd sections 6, 7.3). Avatar terms only with an avatar collider, cloth terms only with selfCollision.
   double contactThickness = 0.004;  // metres kept between cloth and avatar surface
-  double contactWeight = 1e6;       // w_k of a contact constraint, N/m (pd-dd Tab. 1: kappa_c ~ 1e6)
+  double contactWeight = 1e6;       // w_k of a contact constraint, N/m (pd-dd Tab. 1: kappa_c ~ 1e6); see
+                                    // contactWeightFor
   double contactMargin = 0.02;      // metres beyond the thickness where vertices are watched during a step
   ContactSolveKind contactSolve = ContactSolveKind::Factor;
   int sdIterations = 1;             // dual steepest-descent updates before PCG (eq. 24), each one DD solve
@@ -103,5 +104,14 @@ struct PreviewSettings {
   // the contacts (no refactorisation).
   double dragWeight = 1e4;
 };
+
+// Weight of a contact constraint in a model whose stiffest fabric stretches with `largestStretch` N/m: the set
+// weight (the paper's 1e6 N/m), raised to 50 x the fabric's stiffness so that a contact outweighs the fabric and
+// the stitches (10 x). Every fabric preset (at most 2e4 N/m) keeps 1e6; a 1e7 N/m fabric at a 0.1 s step otherwise
+// converged with a vertex 51 mm inside the tablecloth's sphere
+// (tests/unit/solver_extremes_test.cpp).
+inline double contactWeightFor(double weight, double largestStretch) {
+  return weight > 50.0 * largestStretch ? weight : 50.0 * largestStretch;
+}
 
 }  // namespace drape::pd
