@@ -47,6 +47,28 @@ void fillCloth(BlockMatrix& a, int n, const std::vector<std::pair<int, int>>& pa
   for (int i = 0; i < n * n; ++i) a.addBlock(i, i, m * Eigen::Matrix3d::Identity());
 }
 
+// P in the original numbering: vertex v's three DOFs map to its aggregate's (through its storage row).
+Eigen::SparseMatrix<double> prolongation(const BlockMatrix& a, const CoarseSpace& coarse) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int v = 0; v < a.numBlocks(); ++v)
+    for (int d = 0; d < 3; ++d) t.emplace_back(3 * v + d, 3 * coarse.aggregateOfRow()[a.internalIndex(v)] + d, 1.0);
+  Eigen::SparseMatrix<double> p(a.size(), 3 * coarse.numAggregates());
+  p.setFromTriplets(t.begin(), t.end());
+  return p;
+}
+
+// The coarse space's solve of a fixed right-hand side against an independent LDL^T solve of `galerkin`.
+void expectCoarseSolveOf(const CoarseSpace& coarse, const Eigen::SparseMatrix<double>& galerkin) {
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(galerkin);
+  ASSERT_EQ(ldlt.info(), Eigen::Success);
+  Eigen::VectorXd rc(3 * coarse.numAggregates());
+  for (Eigen::Index k = 0; k < rc.size(); ++k) rc(k) = std::sin(0.7 * k + 0.3);
+  Eigen::VectorXd e;
+  coarse.solve(rc, e);
+  const Eigen::VectorXd expected = ldlt.solve(rc);
+  EXPECT_LT((e - expected).norm(), 1e-10 * expected.norm());
+}
+
 }  // namespace
 
 TEST(CoarseSpace, AggregatesCoverEveryRowAndAreConnected) {
@@ -90,29 +112,12 @@ TEST(CoarseSpace, CoarseSolveEqualsAnIndependentGalerkinSolve) {
   fillCloth(a, n, pairs, 1e4, 30.0);
   CoarseSpace coarse(a, 8);
   ASSERT_TRUE(coarse.factorize(a));
-  // P in the original numbering: vertex v's three DOFs map to its aggregate's (through its storage row).
-  const int m = coarse.numAggregates();
-  std::vector<Eigen::Triplet<double>> t;
-  for (int v = 0; v < n * n; ++v)
-    for (int d = 0; d < 3; ++d) t.emplace_back(3 * v + d, 3 * coarse.aggregateOfRow()[a.internalIndex(v)] + d, 1.0);
-  Eigen::SparseMatrix<double> p(3 * n * n, 3 * m);
-  p.setFromTriplets(t.begin(), t.end());
-  const Eigen::SparseMatrix<double> s = a.toSparse();
-  const Eigen::SparseMatrix<double> galerkin = p.transpose() * s * p;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(galerkin);
-  ASSERT_EQ(ldlt.info(), Eigen::Success);
-  Eigen::VectorXd rc(3 * m);
-  for (Eigen::Index k = 0; k < rc.size(); ++k) rc(k) = std::sin(0.7 * k + 0.3);
-  Eigen::VectorXd e;
-  coarse.solve(rc, e);
-  const Eigen::VectorXd expected = ldlt.solve(rc);
-  EXPECT_LT((e - expected).norm(), 1e-10 * expected.norm());
+  const Eigen::SparseMatrix<double> p = prolongation(a, coarse);
+  expectCoarseSolveOf(coarse, p.transpose() * a.toSparse() * p);
   // New values, same pattern: refactorised.
   fillCloth(a, n, pairs, 2e4, 10.0);
   ASSERT_TRUE(coarse.factorize(a));
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt2(Eigen::SparseMatrix<double>(p.transpose() * a.toSparse() * p));
-  coarse.solve(rc, e);
-  EXPECT_LT((e - ldlt2.solve(rc)).norm(), 1e-10 * e.norm());
+  expectCoarseSolveOf(coarse, p.transpose() * a.toSparse() * p);
 }
 
 TEST(CoarseSpace, TwoLevelPcgMeetsTheToleranceInFewerIterations) {
@@ -221,25 +226,12 @@ TEST(CoarseSpace, SelfContactBetweenDistantAggregatesKeepsTheTwoLevelPcgExact) {
   ASSERT_TRUE(coarse.factorize(a)) << "the coarse matrix must stay positive definite";
 
   // Independent coarse matrix: P^T (static + the dynamic blocks on joined aggregates) P.
-  const int m = coarse.numAggregates();
-  std::vector<Eigen::Triplet<double>> t;
-  for (int v = 0; v < n * n; ++v)
-    for (int d = 0; d < 3; ++d) t.emplace_back(3 * v + d, 3 * aggregateOf(v) + d, 1.0);
-  Eigen::SparseMatrix<double> p(3 * n * n, 3 * m);
-  p.setFromTriplets(t.begin(), t.end());
+  const Eigen::SparseMatrix<double> p = prolongation(a, coarse);
   BlockMatrix kept(n * n, pairs, true);
   kept.setStaticValues(a.blocks());
   for (const auto& e : a.dynamicEntries())
     if (joined.count({aggregateOf(e.i), aggregateOf(e.j)})) kept.addDynamicBlock(e.i, e.j, e.block);
-  const Eigen::SparseMatrix<double> galerkin = p.transpose() * kept.toSparse() * p;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(galerkin);
-  ASSERT_EQ(ldlt.info(), Eigen::Success);
-  Eigen::VectorXd rc(3 * m);
-  for (Eigen::Index q = 0; q < rc.size(); ++q) rc(q) = std::sin(0.7 * q + 0.3);
-  Eigen::VectorXd e;
-  coarse.solve(rc, e);
-  const Eigen::VectorXd expected = ldlt.solve(rc);
-  EXPECT_LT((e - expected).norm(), 1e-10 * expected.norm());
+  expectCoarseSolveOf(coarse, p.transpose() * kept.toSparse() * p);
 
   // The two-level PCG on the whole system (every contact block) against CHOLMOD.
   Eigen::VectorXd b(3 * n * n);
