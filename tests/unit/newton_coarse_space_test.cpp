@@ -69,6 +69,21 @@ void expectCoarseSolveOf(const CoarseSpace& coarse, const Eigen::SparseMatrix<do
   EXPECT_LT((e - expected).norm(), 1e-10 * expected.norm());
 }
 
+// The same system solved by block-Jacobi PCG (o as given) and by the two-level PCG (o plus the coarse level).
+struct PcgPair {
+  LinearSolveResult blockJacobi, twoLevel;
+  Eigen::VectorXd twoLevelSolution;
+};
+PcgPair solveOneAndTwoLevel(const BlockMatrix& a, const Eigen::VectorXd& b, const CoarseSpace& coarse,
+                            LinearSolveOptions o) {
+  PcgPair r;
+  Eigen::VectorXd x1;
+  r.blockJacobi = solveLinear(a, b, x1, o);
+  o.coarse = &coarse;
+  r.twoLevel = solveLinear(a, b, r.twoLevelSolution, o);
+  return r;
+}
+
 }  // namespace
 
 TEST(CoarseSpace, AggregatesCoverEveryRowAndAreConnected) {
@@ -139,10 +154,10 @@ TEST(CoarseSpace, TwoLevelPcgMeetsTheToleranceInFewerIterations) {
     o.mixedPrecision = mixed;
     o.tolerance = mixed ? 1e-5 : 1e-8;
     o.maxIterations = 5000;
-    Eigen::VectorXd x1, x2;
-    const LinearSolveResult one = solveLinear(a, b, x1, o);
-    o.coarse = &coarse;
-    const LinearSolveResult two = solveLinear(a, b, x2, o);
+    const PcgPair pcg = solveOneAndTwoLevel(a, b, coarse, o);
+    const LinearSolveResult& one = pcg.blockJacobi;
+    const LinearSolveResult& two = pcg.twoLevel;
+    const Eigen::VectorXd& x2 = pcg.twoLevelSolution;
     ASSERT_TRUE(one.ok && two.ok);
     const double trueResidual = (s * x2 - b).norm() / b.norm();
     EXPECT_LT(trueResidual, mixed ? 2e-5 : 1e-8);
@@ -245,10 +260,10 @@ TEST(CoarseSpace, SelfContactBetweenDistantAggregatesKeepsTheTwoLevelPcgExact) {
   LinearSolveOptions o;
   o.tolerance = 1e-8;
   o.maxIterations = 5000;
-  Eigen::VectorXd x1, x2;
-  const LinearSolveResult one = solveLinear(a, b, x1, o);
-  o.coarse = &coarse;
-  const LinearSolveResult two = solveLinear(a, b, x2, o);
+  const PcgPair pcg = solveOneAndTwoLevel(a, b, coarse, o);
+  const LinearSolveResult& one = pcg.blockJacobi;
+  const LinearSolveResult& two = pcg.twoLevel;
+  const Eigen::VectorXd& x2 = pcg.twoLevelSolution;
   ASSERT_TRUE(one.ok && two.ok);
   EXPECT_LT((s * x2 - b).norm(), 1e-8 * b.norm());
   EXPECT_LT((x2 - exact).norm(), 1e-6 * exact.norm());

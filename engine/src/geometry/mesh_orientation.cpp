@@ -59,7 +59,7 @@ OrientationRepair orientOutward(TriangleMesh& mesh) {
       open.pop();
       for (int k = 0; k < 3; ++k) {
         const int a = tri(f, k), b = tri(f, (k + 1) % 3);
-        const EdgeFaces& e = edges[edgeKey(a, b)];
+        const EdgeFaces& e = edges.at(edgeKey(a, b));
         if (e.count != 2) continue;
         const int g = e.faces[0] == f ? e.faces[1] : e.faces[0];
         if (part[g] >= 0) continue;

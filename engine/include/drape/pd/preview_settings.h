@@ -2,6 +2,7 @@
 // Settings of the Projective Dynamics preview solver (pd-dd-lu2025). Every trade between speed and accuracy is
 // a field here; defaults follow the paper (Tab. 1) where it gives a value.
 #include <Eigen/Core>
+#include <algorithm>
 
 namespace drape::pd {
 
@@ -108,10 +109,10 @@ struct PreviewSettings {
 // Weight of a contact constraint in a model whose stiffest fabric stretches with `largestStretch` N/m: the set
 // weight (the paper's 1e6 N/m), raised to 50 x the fabric's stiffness so that a contact outweighs the fabric and
 // the stitches (10 x). Every fabric preset (at most 2e4 N/m) keeps 1e6; a 1e7 N/m fabric at a 0.1 s step otherwise
-// converged with a vertex 51 mm inside the tablecloth's sphere
-// (tests/unit/solver_extremes_test.cpp).
+// converged with a vertex 51 mm inside the tablecloth's
+// sphere (tests/unit/solver_extremes_test.cpp).
 inline double contactWeightFor(double weight, double largestStretch) {
-  return weight > 50.0 * largestStretch ? weight : 50.0 * largestStretch;
+  return std::max(weight, 50.0 * largestStretch);
 }
 
 }  // namespace drape::pd
