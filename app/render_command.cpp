@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "drape/avatar/avatar_loader.h"
+#include "drape/core/diagnostics.h"
 #include "drape/core/input_error.h"
 #include "drape/garment/garment_builder.h"
 #include "drape/render/headless.h"
@@ -23,11 +24,15 @@ namespace {
 // Runs the scene's stage (none: the placed garment) and returns what to draw.
 Snapshot stageSnapshot(Scene scene, std::ostream& out) {
   if (scene.settings.text("solver.stage") == "none") {
-    const Garment garment = buildGarment(scene.pattern, meshingOptions(scene));
+    Diagnostics diagnostics;
+    const Garment garment = buildGarment(scene.pattern, meshingOptions(scene), &diagnostics);
     resolvePins(scene, garment);  // validates the pins
+    printWarnings(scene.diagnostics.warnings(), out);
+    printWarnings(diagnostics.warnings(), out);
     return makeSnapshot(scene, garment, garment.positions);
   }
   Simulation simulation(std::move(scene));
+  printWarnings(simulation.scene().diagnostics.warnings(), out);  // the scene's and the garment mesher's
   StepReport last;
   while (!simulation.finished()) {
     last = simulation.step();
@@ -74,7 +79,9 @@ int runRender(const CliOptions& options, std::ostream& out) {
                        options.simulateStage + " needs a scene or a pattern)");
     const std::string units = options.scene.avatarUnits.empty() ? "m" : options.scene.avatarUnits;
     Snapshot body;
-    body.avatar = loadAvatar(options.scene.input, unitsInMeterFromName(units));
+    Diagnostics diagnostics;
+    body.avatar = loadAvatar(options.scene.input, unitsInMeterFromName(units), &diagnostics);
+    printWarnings(diagnostics.warnings(), out);
     renderToPng(body, options, SceneCamera{}, options.output, out);
     return 0;
   }

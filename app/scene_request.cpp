@@ -1,7 +1,7 @@
 #include "scene_request.h"
 
+#include <ostream>
 #include <sstream>
-
 
 namespace drape::app {
 
@@ -18,6 +18,10 @@ SceneRequest requestWithStage(const CliOptions& options) {
     request.overrides.emplace_back("solver.max_sim_time", os.str());
   }
   return request;
+}
+
+void printWarnings(const std::vector<std::string>& warnings, std::ostream& out) {
+  for (const std::string& w : warnings) out << "warning: " << w << "\n";
 }
 
 }  // namespace drape::app

@@ -51,17 +51,19 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
   const SceneCamera camera = sceneCamera(scene.settings);
   const std::string stage = scene.settings.text("solver.stage");
   nlohmann::json stats;
-  auto warnings = scene.diagnostics.warnings();
+  std::vector<std::string> warnings;
 
   if (stage == "none") {
     Diagnostics diagnostics;
     const Garment garment =
         buildGarment(scene.pattern, meshingOptions(scene), &diagnostics);
     const auto pinned = resolvePins(scene, garment);
+    warnings = scene.diagnostics.warnings();
+    warnings.insert(warnings.end(), diagnostics.warnings().begin(), diagnostics.warnings().end());
+    printWarnings(warnings, out);
     exportGarment(garment, garment.positions, options.output);
     if (!options.png.empty())
       renderToPng(makeSnapshot(scene, garment, garment.positions), options, camera, options.png, out);
-    warnings.insert(warnings.end(), diagnostics.warnings().begin(), diagnostics.warnings().end());
     stats = {{"status", "Placed"}, {"steps", 0}, {"sim_time_s", 0.0}, {"terms", nlohmann::json::array()},
              {"per_step", nlohmann::json::array()}, {"vertices", garment.vertexCount()},
              {"triangles", garment.triangleCount()}, {"pinned_vertices", pinned.size()}};
@@ -69,6 +71,8 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
         << " triangles, placed garment)\n";
   } else {
     Simulation simulation(std::move(scene));
+    warnings = simulation.scene().diagnostics.warnings();  // the scene's and the garment mesher's
+    printWarnings(warnings, out);
     const auto terms = simulation.terms();
     out << "drape: " << simulation.garment().vertexCount() << " vertices, " << simulation.garment().triangleCount()
         << " triangles; terms:";

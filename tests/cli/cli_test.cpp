@@ -111,6 +111,35 @@ TEST(Cli, SimulateNoneWritesPlacedGarmentAndStats) {
   EXPECT_GT(j.at("triangles").get<int>(), 1000);
 }
 
+// Loader and avatar warnings reach the user of every headless mode, not only --info and the stats file.
+TEST(Cli, SimulateAndRenderPrintTheScenesWarnings) {
+  const std::string pattern = quote((testDataDir() / "patterns" / "mismatched_stitch.json").string());
+  const auto stats = kScratch / "warned_stats.json";
+  auto sim = drape("--simulate " + pattern + " --solver preview --max-sim-time 0.01 --set mesh.target_edge_length=0.05 -o " +
+                   quote((kScratch / "warned.obj").string()) + " --stats " + quote(stats.string()));
+  ASSERT_EQ(sim.exitCode, 0) << sim.err;
+  const std::string expected = "stitch 0: panel 'short' edge 0 (length 20) and panel 'long' edge 1 (length 30) differ";
+  EXPECT_NE(sim.out.find("warning: " + (testDataDir() / "patterns" / "mismatched_stitch.json").string() + ": " +
+                         expected), std::string::npos) << sim.out;
+  const auto warnings = nlohmann::json::parse(readWhole(stats)).at("warnings");
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].get<std::string>().find(expected), std::string::npos);
+
+  auto render = drape("--render " + pattern + " --simulate none --size 32x32 -o " +
+                      quote((kScratch / "warned.png").string()));
+  ASSERT_EQ(render.exitCode, 0) << render.err;
+  EXPECT_NE(render.out.find("warning: "), std::string::npos) << render.out;
+  EXPECT_NE(render.out.find(expected), std::string::npos) << render.out;
+
+  // A body mesh rendered on its own: a tetrahedron wound inside out is turned outward, and says so.
+  const auto body = kScratch / "inside_out_tetrahedron.obj";
+  std::ofstream(body) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n";
+  auto mesh = drape("--render " + quote(body.string()) + " --size 32x32 -o " + quote((kScratch / "body.png").string()));
+  ASSERT_EQ(mesh.exitCode, 0) << mesh.err;
+  EXPECT_NE(mesh.out.find("warning: " + body.string() + ": 4 of 4 faces were wound inward"), std::string::npos)
+      << mesh.out;
+}
+
 TEST(Cli, SimulateWithoutOutputFails) {
   auto r = drape("--simulate " + asset("scenes/tablecloth.json"));
   EXPECT_EQ(r.exitCode, 1);
