@@ -1,5 +1,7 @@
 #include "drape/pd/preview_solver.h"
 
+#include "drape/pd/anderson.h"
+
 #include <algorithm>
 #include <cmath>
 #include <chrono>
@@ -109,6 +111,7 @@ struct PreviewSolver::Impl {
   std::unique_ptr<ClothContacts> cloth;    // null unless settings.selfCollision
   ContactAccumulator accumulator;
   ContactWarmStart contactWarm;       // last contact forces (settings.contactWarmStart)
+  std::unique_ptr<AndersonMixer> anderson;  // settings.andersonWindow > 0
   std::vector<int> lastContactDofs;   // contact set of the previous L-G iteration, for the churn count
   std::vector<char> churnScratch;
 
@@ -172,6 +175,7 @@ PreviewSolver::PreviewSolver(const newton::ClothModel& model, const PreviewSetti
         ClothContactOptions{settings.contactThickness, settings.contactMargin,
                             contactWeightFor(settings.selfContactWeight, stretch)},
         model.edgeStitches);
+  if (settings.andersonWindow > 0) im.anderson = std::make_unique<AndersonMixer>(settings.andersonWindow);
   im.accumulator.reset(im.system->freeCount());
   toFlat(im.x, im.flatX);
   toFlat(im.v, im.flatV);
@@ -335,6 +339,7 @@ PreviewReport PreviewSolver::Impl::attempt() {
   }
   Eigen::MatrixX3d xFree;
   ContactSet contacts;
+  if (anderson) anderson->reset();
   rep.status = PreviewStatus::MaxIterations;
   for (int it = 0; it < settings.maxIterations; ++it) {
     if (cancel.exchange(false)) {
@@ -373,13 +378,16 @@ PreviewReport PreviewSolver::Impl::attempt() {
       break;
     }
     double move = 0.0;
-    for (int d = 0; d < nf; ++d) {
-      const int vtx = freeVertices[d];
-      move = std::max(move, (xFree.row(d) - x.row(vtx)).squaredNorm());
-      x.row(vtx) = xFree.row(d);
-    }
+    for (int d = 0; d < nf; ++d) move = std::max(move, (xFree.row(d) - x.row(freeVertices[d])).squaredNorm());
     rep.residual = std::sqrt(move) / extent;
-    if (rep.residual < settings.tolerance && rep.iterations >= settings.minIterations) {
+    const bool converged = rep.residual < settings.tolerance && rep.iterations >= settings.minIterations;
+    if (anderson && !converged && it + 1 < settings.maxIterations) {
+      Eigen::MatrixX3d current(nf, 3);
+      for (int d = 0; d < nf; ++d) current.row(d) = x.row(freeVertices[d]);
+      xFree = anderson->next(current, xFree);
+    }
+    for (int d = 0; d < nf; ++d) x.row(freeVertices[d]) = xFree.row(d);
+    if (converged) {
       rep.status = PreviewStatus::Converged;
       break;
     }

@@ -110,6 +110,7 @@ pd::PreviewSettings previewSettingsFrom(const Scene& scene) {
   p.timeStep = s.number("solver.preview.time_step");
   p.tolerance = s.number("solver.preview.tolerance");
   p.maxIterations = s.integer("solver.preview.max_iterations");
+  p.andersonWindow = s.integer("solver.preview.anderson_window");
   p.maxHalvings = s.integer("solver.preview.max_halvings");
   p.growAfterSteps = s.integer("solver.preview.grow_after_steps");
   p.domains = s.integer("solver.preview.domains");

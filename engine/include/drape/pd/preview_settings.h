@@ -38,6 +38,7 @@ struct PreviewSettings {
   double tolerance = 1e-3;        // max vertex move of an L-G iteration / largest extent of the cloth's box
   int maxIterations = 30;         // cap on L-G iterations per step
   int minIterations = 1;
+  int andersonWindow = 0;         // > 0: Anderson acceleration of the L-G iterations over this many differences
   // A step whose L-G loop hits the cap is redone at half the time step, at most this many times below timeStep
   // (0: never, as in the paper); growAfterSteps converged steps at a level double it back. Contact on body creases
   // can keep the L-G loop from converging at 1/120 s (targets cycle between the crease's two surfaces, and the
