@@ -35,7 +35,9 @@ const std::vector<SettingSpec>& Settings::specs() {
        1e4},
       {"solver.max_steps", T::Integer, "100000", "", "step limit", 1, 1e9},
       // PD-DD preview (pd-dd-lu2025; defaults from the paper)
-      {"solver.preview.time_step", T::Number, "0.008333333333333333", "s", "preview time step h", 1e-5, 0.1},
+      {"solver.preview.time_step", T::Number, "0.0020833333333333333", "s",
+       "preview time step h (the paper: 1/120 s; 1/480 s keeps stiff, light garments on the body, docs/ENGINE.md)", 1e-5,
+       0.1},
       {"solver.preview.tolerance", T::Number, "1e-3", "", "L-G convergence: max move / scene size", 1e-9, 1},
       {"solver.preview.max_iterations", T::Integer, "30", "", "cap on L-G iterations per step", 1, 10000},
       {"solver.preview.anderson_window", T::Integer, "0", "",

@@ -34,7 +34,7 @@ struct StretchLimits {
 };
 
 struct PreviewSettings {
-  double timeStep = 1.0 / 120.0;  // h, seconds (pd-dd Tab. 1)
+  double timeStep = 1.0 / 120.0;  // h, seconds (pd-dd Tab. 1); scenes default to 1/480 s (solver.preview.time_step)
   double tolerance = 1e-3;        // max vertex move of an L-G iteration / largest extent of the cloth's box
   int maxIterations = 30;         // cap on L-G iterations per step
   int minIterations = 1;
