@@ -61,6 +61,26 @@ TEST(AndersonMixer, ARisingResidualRestartsFromThePlainStep) {
   EXPECT_EQ(mixer.restarts(), 1);
 }
 
+// After a restart the extrapolation uses only what came after it: a mixer with a history before the restart gives
+// the same iterates as a fresh one fed the same points from the restart on.
+TEST(AndersonMixer, ARestartForgetsTheWholeHistory) {
+  std::srand(11);
+  const LinearMap map = slowLinearMap(12);
+  AndersonMixer used(4), fresh(4);
+  Eigen::MatrixX3d x = Eigen::MatrixX3d::Zero(12, 3);
+  for (int it = 0; it < 3; ++it) x = used.next(x, map.apply(x));  // two differences stored
+  // A point whose move is far larger than the last one: the used mixer restarts, the fresh one starts.
+  const Eigen::MatrixX3d far = x + Eigen::MatrixX3d::Constant(12, 3, 10.0);
+  Eigen::MatrixX3d a = used.next(far, map.apply(far)), b = fresh.next(far, map.apply(far));
+  ASSERT_EQ(used.restarts(), 1);
+  for (int it = 0; it < 6; ++it) {
+    EXPECT_LT((a - b).norm(), 1e-12 * b.norm()) << "iteration " << it;
+    const Eigen::MatrixX3d ga = map.apply(a), gb = map.apply(b);
+    a = used.next(a, ga);
+    b = fresh.next(b, gb);
+  }
+}
+
 // The accelerated loop reaches the plain loop's converged step in fewer L-G iterations, for both local steps and
 // both shear models (no contact: the fixed-point map is smooth).
 TEST(PdPreviewAnderson, HangingClothReachesThePlainLoopsStatesInFewerIterations) {

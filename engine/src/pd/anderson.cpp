@@ -1,6 +1,7 @@
 #include "drape/pd/anderson.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 
 namespace drape::pd {
 
@@ -12,12 +13,10 @@ Eigen::MatrixX3d AndersonMixer::next(const Eigen::MatrixX3d& x, const Eigen::Mat
   if (m_dF.rows() != n) {
     m_dF.resize(n, m_window);
     m_dG.resize(n, m_window);
-    m_count = 0;
-    m_have = false;
+    reset();
   }
   if (m_have && norm > m_lastNorm) {  // safeguard: the residual grew; restart from the plain step
-    m_count = 0;
-    m_have = false;
+    reset();
     ++m_restarts;
   }
   if (m_have) {
@@ -38,7 +37,7 @@ Eigen::MatrixX3d AndersonMixer::next(const Eigen::MatrixX3d& x, const Eigen::Mat
   Eigen::MatrixX3d out(x.rows(), 3);
   Eigen::Map<Eigen::VectorXd>(out.data(), n) = gv - dG * gamma;
   if (!out.allFinite()) {
-    m_count = 0;
+    reset();
     return g;
   }
   return out;

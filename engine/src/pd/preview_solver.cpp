@@ -1,7 +1,5 @@
 #include "drape/pd/preview_solver.h"
 
-#include "drape/pd/anderson.h"
-
 #include <algorithm>
 #include <cmath>
 #include <chrono>
@@ -12,6 +10,7 @@
 #include <tbb/task_arena.h>
 
 #include "drape/collision/avatar_collider.h"
+#include "drape/pd/anderson.h"
 #include "drape/pd/avatar_collision.h"
 #include "drape/pd/cloth_collision.h"
 #include "drape/pd/contact_factor.h"

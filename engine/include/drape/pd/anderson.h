@@ -5,14 +5,13 @@
 // |f - dF gamma|. Safeguarded: when a residual grows against the previous one, the history is dropped and the plain
 // step G(x) taken, so the accelerated loop is never worse than a restart of the plain one.
 #include <Eigen/Core>
-#include <vector>
 
 namespace drape::pd {
 
 class AndersonMixer {
  public:
   explicit AndersonMixer(int window = 5) : m_window(window) {}
-  void reset() { m_count = 0; m_have = false; }
+  void reset() { m_count = m_head = 0; m_have = false; }
   // x: the current iterate, g: G(x) (same shape, rows = free DOFs). Returns the next iterate.
   Eigen::MatrixX3d next(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& g);
   int window() const { return m_window; }
@@ -20,8 +19,8 @@ class AndersonMixer {
 
  private:
   int m_window;
-  int m_count = 0;       // differences stored (<= window)
-  int m_head = 0;        // slot of the next difference
+  int m_count = 0;       // differences stored (<= window), in columns [0, count) until the window is full
+  int m_head = 0;        // slot of the next difference (== count until the window is full)
   bool m_have = false;   // a previous (x, g) pair exists
   int m_restarts = 0;
   double m_lastNorm = 0.0;
