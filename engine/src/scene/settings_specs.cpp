@@ -34,7 +34,7 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"solver.max_sim_time", T::Number, "3", "s", "simulated time limit when the garment does not come to rest", 1e-4,
        1e4},
       {"solver.max_steps", T::Integer, "100000", "", "step limit", 1, 1e9},
-      // PD-DD preview (pd-dd-lu2025; defaults from the paper)
+      // PD-DD preview (pd-dd-lu2025; defaults from the paper unless a description says otherwise)
       {"solver.preview.time_step", T::Number, "0.0020833333333333333", "s",
        "preview time step h (the paper: 1/120 s; 1/480 s keeps stiff, light garments on the body, docs/ENGINE.md)", 1e-5,
        0.1},
