@@ -30,7 +30,8 @@ Eigen::MatrixX3d AndersonMixer::next(const Eigen::MatrixX3d& x, const Eigen::Mat
   m_have = true;
   m_lastNorm = norm;
   if (m_count == 0) return g;
-  const Eigen::MatrixXd dF = m_dF.leftCols(m_count), dG = m_dG.leftCols(m_count);
+  const auto dF = m_dF.leftCols(m_count);
+  const auto dG = m_dG.leftCols(m_count);
   Eigen::MatrixXd normal = dF.transpose() * dF;
   normal.diagonal().array() += 1e-10 * normal.diagonal().maxCoeff() + 1e-300;
   const Eigen::VectorXd gamma = normal.ldlt().solve(dF.transpose() * f);
