@@ -18,6 +18,15 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+// The value below which a fraction p of the values lie (the k-th smallest, k = ceil(p n)); 0 for none.
+double percentile(std::vector<double> values, double p) {
+  const int n = static_cast<int>(values.size());
+  if (n == 0) return 0.0;
+  const int k = std::clamp(static_cast<int>(std::ceil(p * n)) - 1, 0, n - 1);
+  std::nth_element(values.begin(), values.begin() + k, values.end());
+  return values[k];
+}
+
 }  // namespace
 
 const char* toString(NewtonStatus status) {
@@ -135,13 +144,18 @@ double NewtonSolver::totalEnergy(const Eigen::VectorXd& x) const {
 }
 
 double NewtonSolver::kineticEnergyPercentile() const {
-  const int n = static_cast<int>(m_mass.size());
-  if (n == 0) return 0.0;
-  std::vector<double> ke(n);
-  for (int i = 0; i < n; ++i) ke[i] = 0.5 * m_mass(i) * m_v.segment<3>(3 * i).squaredNorm();
-  int k = std::clamp(static_cast<int>(std::ceil(m_settings.kineticPercentile * n)) - 1, 0, n - 1);
-  std::nth_element(ke.begin(), ke.begin() + k, ke.end());
-  return ke[k];
+  std::vector<double> ke(m_mass.size());
+  for (size_t i = 0; i < ke.size(); ++i) ke[i] = 0.5 * m_mass(i) * m_v.segment<3>(3 * i).squaredNorm();
+  return percentile(std::move(ke), m_settings.kineticPercentile);
+}
+
+bool NewtonSolver::residualBelowRest(const Eigen::VectorXd& b) const {
+  if (!m_nearRest) return true;
+  // The velocity error b_i / m_i of vertex i, as kinetic energy.
+  std::vector<double> ke(m_mass.size());
+  for (size_t i = 0; i < ke.size(); ++i)
+    ke[i] = m_mass(i) > 0.0 ? 0.5 * b.segment<3>(3 * i).squaredNorm() / m_mass(i) : 0.0;
+  return percentile(std::move(ke), m_settings.kineticPercentile) < m_settings.earlyStopThreshold;
 }
 
 // Right-hand side of eq. 4: b = M (v_n - v) - h dE/dx(x); its norm is the Newton residual.
@@ -290,7 +304,8 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
     // velocities that keep the garment from settling).
     if (it == 0 && report.hessianReused && !fullStep) continue;
     if (!accepted) return rn < m_settings.tauNewton ? NewtonStatus::Converged : NewtonStatus::Diverged;
-    if (rn < m_settings.tauNewton) return NewtonStatus::Converged;
+    const bool lastIteration = it + 1 == m_settings.maxNewtonIterations;
+    if (rn < m_settings.tauNewton && (lastIteration || residualBelowRest(b))) return NewtonStatus::Converged;
   }
   return NewtonStatus::MaxIterations;
 }
@@ -309,6 +324,8 @@ NewtonStepReport NewtonSolver::step() {
   // A relaxation step ends with zero velocities, so the next one starts where this one's last gradient pass ran.
   for (size_t k = 0; k < m_elasticCount; ++k)
     m_energies[k]->setRecordStepStartGradient(relaxing && s.stepStartGradients);
+  m_nearRest = s.restAwareConvergence && !relaxing &&
+               kineticEnergyPercentile() < s.restAwareFactor * s.earlyStopThreshold;
   Eigen::VectorXd x, v;
   while (true) {
     if (m_cancel.load()) {

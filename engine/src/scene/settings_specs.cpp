@@ -110,6 +110,9 @@ const std::vector<SettingSpec>& Settings::specs() {
        "initial relaxation also when the drape starts from the preview's state (seams already closed)"},
       {"solver.newton.early_stop_threshold", T::Number, "1e-8", "J",
        "early stop: 99th percentile of per-vertex kinetic energy", 0, 1},
+      {"solver.newton.rest_aware_convergence", T::Boolean, "true", "",
+       "a step below tau_n iterates on (up to max_iterations) while its residual's velocity error, as kinetic energy, "
+       "is above the early-stop threshold: near rest tau_n alone accepts errors that keep the garment creeping"},
       {"solver.newton.early_stop_window", T::Number, "0.1", "s", "early stop: time the threshold must hold", 0, 10},
       {"solver.cg.tolerance", T::Number, "1e-2", "", "PCG relative tolerance tau_cg", 1e-14, 0.9},
       {"solver.cg.max_iterations", T::Integer, "500", "", "PCG iteration cap", 1, 1e6},

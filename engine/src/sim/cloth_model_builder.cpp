@@ -72,6 +72,7 @@ newton::NewtonSettings newtonSettingsFrom(const Settings& s) {
   n.relaxationHoldStep = s.text("solver.newton.relaxation_step") == "hold";
   n.earlyStopThreshold = s.number("solver.newton.early_stop_threshold");
   n.earlyStopWindow = s.number("solver.newton.early_stop_window");
+  n.restAwareConvergence = s.flag("solver.newton.rest_aware_convergence");
   n.linear.tolerance = s.number("solver.cg.tolerance");
   n.cgForcing = s.number("solver.cg.forcing");
   n.linear.maxIterations = s.integer("solver.cg.max_iterations");
