@@ -185,7 +185,7 @@ TEST(Simulation, ClearCancelLetsTheNextStepRun) {
 
 TEST(Simulation, TimeLimitAlsoEndsThePreviewOfTheFullPipeline) {
   Scene scene = tablecloth("full");
-  scene.settings.set("solver.max_sim_time", "0.05", "test");  // below solver.preview.max_time (1 s)
+  scene.settings.set("solver.max_sim_time", "0.05", "test");  // below solver.preview.max_time (0.5 s)
   Simulation sim(std::move(scene));
   int steps = 0;
   while (!sim.finished() && steps < 1000) {

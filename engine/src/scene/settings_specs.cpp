@@ -88,7 +88,10 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"solver.preview.sd_iterations", T::Integer, "1", "", "dual steepest-descent updates before PCG (eq. 24)", 1,
        1000},
       {"solver.preview.ccd", T::Boolean, "true", "", "CCD of the vertex paths against the avatar"},
-      {"solver.preview.max_time", T::Number, "1", "s", "longest preview stage (full pipeline)", 1e-3, 1e4},
+      {"solver.preview.max_time", T::Number, "0.5", "s",
+       "longest preview stage (full pipeline), counted again when the garment's own mesh takes over from the coarse "
+       "assembly; a later hand-over leaves the drape more to undo (docs/BENCHMARKS.md)",
+       1e-3, 1e4},
       {"solver.preview.rest_speed", T::Number, "0.01", "m/s",
        "the preview is settled when the 99th percentile of vertex speeds falls below this", 0, 100},
       {"solver.preview.handoff_speed", T::Number, "0.1", "m/s",

@@ -383,7 +383,10 @@ StepReport Simulation::step() {
       m_restSince = -1.0;
     }
     const bool settled = m_restSince >= 0 && time() - m_restSince >= 0.1;
-    const bool timeUp = time() >= m_scene.settings.number("solver.preview.max_time") - 1e-12;
+    // The coarse assembly has max_time from the start; the garment's own mesh has it again from where it took over
+    // (or from a resumed state): it has its own settling to do.
+    const double previewStart = assembling ? 0.0 : m_solver->previewOffset;
+    const bool timeUp = time() - previewStart >= m_scene.settings.number("solver.preview.max_time") - 1e-12;
     report.time = time();
     ++m_steps;
     if (assembling) {
