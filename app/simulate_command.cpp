@@ -31,6 +31,10 @@ nlohmann::json stepRecord(const StepReport& r) {
     j["collision_time_s"] = r.collisionTime;
     j["local_time_s"] = r.localTime;
     j["global_time_s"] = r.globalTime;
+  } else if (r.stage == "drape") {
+    j["assembly_time_s"] = r.assemblyTime;
+    j["gradient_time_s"] = r.gradientTime;
+    j["linear_solve_time_s"] = r.linearSolveTime;
   }
   return j;
 }

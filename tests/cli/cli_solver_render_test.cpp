@@ -34,7 +34,16 @@ TEST(CliSimulate, DrapeWritesGarmentAndPerStepStats) {
   // Model only what the scene requires: no collider, so no contact or friction term.
   EXPECT_EQ(std::find(terms.begin(), terms.end(), "avatar_contact"), terms.end());
   EXPECT_EQ(std::find(terms.begin(), terms.end(), "friction"), terms.end());
-  for (const auto& s : j.at("per_step")) EXPECT_TRUE(std::isfinite(s.at("residual").get<double>()));
+  for (const auto& s : j.at("per_step")) {
+    EXPECT_TRUE(std::isfinite(s.at("residual").get<double>()));
+    // Where the drape step's time went: assembly, gradient passes and linear solves, within the step's wall time.
+    const double assembly = s.at("assembly_time_s"), gradient = s.at("gradient_time_s"),
+                 solve = s.at("linear_solve_time_s");
+    EXPECT_GT(assembly, 0.0);
+    EXPECT_GT(solve, 0.0);
+    EXPECT_GE(gradient, 0.0);
+    EXPECT_LE(assembly + gradient + solve, s.at("wall_time_s").get<double>());
+  }
   EXPECT_NE(readWhole(obj).find("\nf "), std::string::npos);
 }
 
