@@ -8,13 +8,51 @@
 
 #include <cstdio>
 #include <string>
+#include <vector>
 
+#include "drape/newton/newton_solver.h"
 #include "drape/scene/scene.h"
 #include "drape/sim/simulation.h"
+#include "newton_test_cloths.h"
 #include "shared_data.h"
 
 namespace drape::test {
 namespace {
+
+// The rule itself on a hanging cloth (no contact): near rest a step below tau_n iterates on while its residual's
+// kinetic energy is above the early-stop threshold, and one that cannot get there is accepted at I_n, never split.
+TEST(NewtonRestConvergence, NearRestStepsIterateOnButAreNeverSplit) {
+  newton::ClothModel m = newton::gridCloth(12, 0.5 / 11, 0.0, 3);
+  m.pinned = {12 * 11, 12 * 12 - 1};
+  auto run = [&](bool restAware, double threshold) {
+    newton::NewtonSettings s;
+    s.relaxation = false;
+    s.hessianReuseSteps = 0;
+    s.restAwareConvergence = restAware;
+    s.earlyStopThreshold = threshold;
+    s.restAwareFactor = 1e300;  // every step counts as near rest
+    newton::NewtonSolver solver(m, s);
+    std::vector<newton::NewtonStepReport> reports;
+    for (int k = 0; k < 20; ++k) reports.push_back(solver.step());
+    return reports;
+  };
+  for (const auto& r : run(false, 1e-300)) {  // the paper's test: one iteration reaches tau_n here
+    EXPECT_EQ(r.newtonIterations, 1);
+  }
+  for (const auto& r : run(true, 1.0)) {  // a threshold every residual is below: the same single iteration
+    EXPECT_EQ(r.newtonIterations, 1);
+  }
+  int iterations = 0;
+  for (const auto& r : run(true, 1e-300)) {  // a threshold no residual reaches: more iterations, never a split
+    EXPECT_EQ(r.status, newton::NewtonStatus::Converged) << "t = " << r.time;
+    EXPECT_EQ(r.splits, 0) << "t = " << r.time;
+    EXPECT_LT(r.residual, 1e-3);
+    EXPECT_GE(r.newtonIterations, 2) << "t = " << r.time;
+    EXPECT_LE(r.newtonIterations, 5);
+    iterations += r.newtonIterations;
+  }
+  std::printf("[ NewtonRestConvergence ] unreachable threshold: %.2f Newton iterations per step\n", iterations / 20.0);
+}
 
 TEST(NewtonRestConvergence, SkirtDrapeFromThePreviewComesToRest) {
   SceneRequest request;
