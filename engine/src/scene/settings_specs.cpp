@@ -111,6 +111,10 @@ const std::vector<SettingSpec>& Settings::specs() {
        -1e300, 1e300, {"hold", "grow"}},
       {"solver.newton.relaxation_after_preview", T::Boolean, "false", "",
        "initial relaxation also when the drape starts from the preview's state (seams already closed)"},
+      {"solver.newton.h_max_factor_after_preview", T::Number, "3", "",
+       "the drape that starts from the preview's state steps up to this many times h_max: it settles a garment "
+       "already near rest, where the step barely moves the result (1: the step of a drape from the placed garment)",
+       1, 100},
       {"solver.newton.early_stop_threshold", T::Number, "1e-8", "J",
        "early stop: 99th percentile of per-vertex kinetic energy", 0, 1},
       {"solver.newton.rest_aware_convergence", T::Boolean, "true", "",

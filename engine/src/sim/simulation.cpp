@@ -225,7 +225,12 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
   m_solver->contact = makeContactTerms(m_scene, m_garment, m_solver->collider);
   newton::NewtonSettings settings = newtonSettingsFrom(m_scene.settings);
   // The relaxation settles a placed garment (seams apart, pre-stretch); the preview has already done that.
-  if (positions.rows() > 0) settings.relaxation = m_scene.settings.flag("solver.newton.relaxation_after_preview");
+  // Its time steps may be longer: it settles a garment already near rest, whose result they barely move (docs/
+  // BENCHMARKS.md, "The drape after the preview steps 3 ms").
+  if (positions.rows() > 0) {
+    settings.relaxation = m_scene.settings.flag("solver.newton.relaxation_after_preview");
+    settings.hMax *= m_scene.settings.number("solver.newton.h_max_factor_after_preview");
+  }
   m_solver->newton = std::make_unique<newton::NewtonSolver>(std::move(model), settings,
                                                             std::move(m_solver->contact.energies));
   if (m_dragVertex >= 0) m_solver->newton->setDrag(m_dragVertex, m_dragTarget);
