@@ -1,7 +1,9 @@
 // Avatar collider: signed distance to an icosphere and to a box against the analytic shapes, inside and outside,
-// and the closest point against an all-triangles search; a hinted query answers as the unhinted one.
+// and the closest point against an all-triangles search; a hinted query answers as the unhinted one, also where it
+// searches only the hint's neighbourhood.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <random>
 
@@ -112,6 +114,57 @@ TEST(CollisionAvatarTest, HintedQueryAnswersAsTheUnhintedOne) {
   }
   EXPECT_GT(found, 500);  // both outcomes of the bounded query are exercised
   EXPECT_GT(missed, 500);
+}
+
+// Near the surface with a nearby hint, the query searches only the hint's neighbourhood (hintRadius()); its answer
+// is still the closest point over all triangles, on a lumpy mesh whose triangles differ in size.
+TEST(CollisionAvatarTest, HintedQueryNearTheSurfaceFindsTheClosestOfAllTriangles) {
+  TriangleMesh mesh = makeIcosphere(Vector3d::Zero(), 0.2, 4);
+  for (int v = 0; v < mesh.vertexCount(); ++v) {  // bumps, so that neighbouring triangles compete
+    const Vector3d p = mesh.vertices.row(v);
+    mesh.vertices.row(v) *= 1.0 + 0.08 * std::sin(23.0 * p.x()) * std::cos(17.0 * p.y() + 11.0 * p.z());
+  }
+  const AvatarCollider collider(mesh);
+  const double radius = collider.hintRadius();
+  ASSERT_GT(radius, 0.0);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int local = 0;
+  for (int k = 0; k < 4000; ++k) {
+    Vector3d dir(u(rng), u(rng), u(rng));
+    dir.normalize();
+    SurfacePoint onSurface;
+    ASSERT_TRUE(collider.closest(0.2 * dir, onSurface));
+    // A point up to radius / 3 off the surface, hinted with the triangle of a point up to radius / 6 away.
+    const Vector3d p = onSurface.closest + (radius / 3.0) * u(rng) * onSurface.normal;
+    SurfacePoint previous;
+    ASSERT_TRUE(collider.closest(p + (radius / 6.0) * Vector3d(u(rng), u(rng), u(rng)).normalized(), previous));
+    const double bound = k % 2 ? 0.4 * radius : std::numeric_limits<double>::infinity();
+    double best = std::numeric_limits<double>::infinity();
+    for (int f = 0; f < mesh.triangleCount(); ++f)
+      best = std::min(best, closestPointTriangle(p, mesh.vertices.row(mesh.triangles(f, 0)),
+                                                 mesh.vertices.row(mesh.triangles(f, 1)),
+                                                 mesh.vertices.row(mesh.triangles(f, 2)))
+                                .distanceSquared);
+    const Eigen::Matrix3d corners = [&] {
+      Eigen::Matrix3d c;
+      for (int i = 0; i < 3; ++i) c.row(i) = mesh.vertices.row(mesh.triangles(previous.triangle, i));
+      return c;
+    }();
+    const double hintDistance = std::sqrt(
+        closestPointTriangle(p, corners.row(0), corners.row(1), corners.row(2)).distanceSquared);
+    local += hintDistance + std::min(hintDistance, bound) <= radius;
+    SurfacePoint hinted;
+    const bool hit = collider.closest(p, hinted, bound, previous.triangle);
+    ASSERT_EQ(hit, std::sqrt(best) < bound) << p.transpose();
+    if (!hit) continue;
+    EXPECT_NEAR(std::abs(hinted.signedDistance), std::sqrt(best), 1e-13) << p.transpose();
+    SurfacePoint plain;
+    ASSERT_TRUE(collider.closest(p, plain, bound));
+    EXPECT_NEAR(hinted.signedDistance, plain.signedDistance, 1e-13);
+    EXPECT_LT((hinted.closest - plain.closest).norm(), 1e-12);
+  }
+  EXPECT_GT(local, 3000);  // most queries took the neighbourhood search
 }
 
 }  // namespace

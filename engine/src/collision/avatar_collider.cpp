@@ -8,6 +8,8 @@
 #include <cmath>
 #include <tuple>
 
+#include <tbb/parallel_for.h>
+
 namespace drape::collision {
 namespace {
 
@@ -66,6 +68,59 @@ AvatarCollider::AvatarCollider(TriangleMesh mesh) : m_mesh(std::move(mesh)) {
     i = j;
   }
   m_tree.build(boxes);
+  buildNeighbourhoods(boxes);
+}
+
+void AvatarCollider::buildNeighbourhoods(const std::vector<BoundingBox>& boxes) {
+  const int faces = m_mesh.triangleCount();
+  const auto& V = m_mesh.vertices;
+  const auto& F = m_mesh.triangles;
+  double edgeSum = 0.0;
+  m_spheres.resize(faces);
+  for (int f = 0; f < faces; ++f) {
+    const Eigen::Vector3d corners[3] = {V.row(F(f, 0)), V.row(F(f, 1)), V.row(F(f, 2))};
+    const Eigen::Vector3d centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
+    double radius = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      radius = std::max(radius, (corners[k] - centroid).norm());
+      edgeSum += (corners[(k + 1) % 3] - corners[k]).norm();
+    }
+    m_spheres[f] << centroid, radius;
+  }
+  m_nearRadius = faces > 0 ? 1.5 * edgeSum / (3.0 * faces) : 0.0;
+  const double r2 = m_nearRadius * m_nearRadius;
+  std::vector<std::vector<int>> lists(faces);
+  tbb::parallel_for(0, faces, [&](int f) {
+    m_tree.forEachOverlap(inflated(boxes[f], m_nearRadius), [&](int g) {
+      if (squaredDistance(boxes[f], boxes[g]) <= r2) lists[f].push_back(g);
+    });
+  });
+  m_nearStart.assign(faces + 1, 0);
+  for (int f = 0; f < faces; ++f) m_nearStart[f + 1] = m_nearStart[f] + static_cast<int>(lists[f].size());
+  m_near.resize(m_nearStart[faces]);
+  for (int f = 0; f < faces; ++f) std::copy(lists[f].begin(), lists[f].end(), m_near.begin() + m_nearStart[f]);
+}
+
+int AvatarCollider::nearestNeighbour(const Eigen::Vector3d& p, int hint, double& best2) const {
+  const auto& V = m_mesh.vertices;
+  const auto& F = m_mesh.triangles;
+  int best = -1;
+  double bound = std::sqrt(best2);
+  for (int k = m_nearStart[hint]; k < m_nearStart[hint + 1]; ++k) {
+    const int g = m_near[k];
+    if (g == hint) continue;  // already in best2
+    // Every point of g is at least |p - centroid| - radius from p.
+    const Eigen::Vector4d& sphere = m_spheres[g];
+    const double reach = sphere[3] + bound;
+    if ((p - sphere.head<3>()).squaredNorm() >= reach * reach) continue;
+    const double d2 = closestPointTriangle(p, V.row(F(g, 0)), V.row(F(g, 1)), V.row(F(g, 2))).distanceSquared;
+    if (d2 < best2) {
+      best2 = d2;
+      bound = std::sqrt(d2);
+      best = g;
+    }
+  }
+  return best;
 }
 
 Eigen::Vector3d AvatarCollider::pseudoNormal(int triangle, TriangleRegion region) const {
@@ -87,16 +142,23 @@ bool AvatarCollider::closest(const Eigen::Vector3d& p, SurfacePoint& out, double
   auto corner = [&](int f, int k) -> Eigen::Vector3d { return V.row(F(f, k)).transpose(); };
   double best2 = std::isfinite(maxDistance) ? maxDistance * maxDistance : std::numeric_limits<double>::infinity();
   int seed = -1;
+  bool local = false;
   if (hint >= 0 && hint < m_mesh.triangleCount()) {
     const double d2 = closestPointTriangle(p, corner(hint, 0), corner(hint, 1), corner(hint, 2)).distanceSquared;
     if (d2 < best2) {
       best2 = d2;
       seed = hint;
     }
+    // A triangle closer than sqrt(best2) has a point within sqrt(d2) + sqrt(best2) of the hint's closest point.
+    local = std::sqrt(d2) + std::sqrt(best2) <= m_nearRadius;
   }
-  int f = m_tree.nearest(
-      p, [&](int t) { return closestPointTriangle(p, corner(t, 0), corner(t, 1), corner(t, 2)).distanceSquared; },
-      best2);
+  int f = local ? nearestNeighbour(p, hint, best2)
+                : m_tree.nearest(
+                      p,
+                      [&](int t) {
+                        return closestPointTriangle(p, corner(t, 0), corner(t, 1), corner(t, 2)).distanceSquared;
+                      },
+                      best2);
   if (f < 0) f = seed;  // nothing strictly closer than the hint
   if (f < 0) return false;
   const PointTriangleResult r = closestPointTriangle(p, corner(f, 0), corner(f, 1), corner(f, 2));

@@ -29,9 +29,13 @@ class AvatarCollider {
   // Closest surface point to p among those with unsigned distance < maxDistance (metres); false when none.
   // hint: a triangle likely to be (nearly) the closest, e.g. the answer for the same vertex a moment earlier, or
   // -1. Its distance starts the search's bound, so the tree walk skips everything farther: the answer is the
-  // same, only found faster.
+  // same, only found faster. When the hint's distance plus the bound (the smaller of maxDistance and the hint's
+  // distance) is at most hintRadius(), every triangle that could be closer lies within hintRadius() of the hint
+  // (triangle inequality), and only those, listed at construction, are searched instead of the tree.
   bool closest(const Eigen::Vector3d& p, SurfacePoint& out,
                double maxDistance = std::numeric_limits<double>::infinity(), int hint = -1) const;
+  // Radius of the hint's neighbourhood (1.5 mean edge lengths of the mesh), metres.
+  double hintRadius() const { return m_nearRadius; }
   // Signed distance of p (metres): negative inside. Unbounded query.
   double signedDistance(const Eigen::Vector3d& p) const;
 
@@ -40,12 +44,21 @@ class AvatarCollider {
 
  private:
   Eigen::Vector3d pseudoNormal(int triangle, TriangleRegion region) const;
+  // Lists, per triangle, the triangles whose bounding boxes come within m_nearRadius of its box (a superset of those
+  // within m_nearRadius of it).
+  void buildNeighbourhoods(const std::vector<BoundingBox>& boxes);
+  // Closest triangle to p among the hint's neighbours with squared distance below best2 (updated); -1 when none.
+  int nearestNeighbour(const Eigen::Vector3d& p, int hint, double& best2) const;
 
   TriangleMesh m_mesh;
   Bvh m_tree;
   std::vector<Eigen::Vector3d> m_faceNormals;    // |F|, unit
   std::vector<Eigen::Vector3d> m_vertexNormals;  // |V|, angle-weighted, unit
   std::vector<Eigen::Vector3d> m_edgeNormals;    // 3|F|: edge k of face f (AB, BC, CA) at 3f + k, unit
+  double m_nearRadius = 0.0;
+  std::vector<int> m_nearStart;            // |F| + 1: the neighbours of f are m_near[m_nearStart[f] ..)
+  std::vector<int> m_near;
+  std::vector<Eigen::Vector4d> m_spheres;  // |F|: centroid and the distance of its farthest corner
 };
 
 }  // namespace drape::collision
