@@ -12,12 +12,20 @@
 namespace drape::test {
 namespace {
 
-Scene coarseTablecloth(const std::vector<std::pair<std::string, std::string>>& extra) {
+using Overrides = std::vector<std::pair<std::string, std::string>>;
+
+// A library scene (assets/scenes/<file>) with settings overridden.
+Scene libraryScene(const char* file, Overrides overrides) {
   SceneRequest request;
-  request.input = assetsDir() / "scenes" / "tablecloth.json";
-  request.overrides = {{"mesh.target_edge_length", "0.08"}, {"solver.stage", "full"}};
-  for (const auto& kv : extra) request.overrides.push_back(kv);
+  request.input = assetsDir() / "scenes" / file;
+  request.overrides = std::move(overrides);
   return loadScene(request);
+}
+
+Scene coarseTablecloth(const Overrides& extra) {
+  Overrides overrides = {{"mesh.target_edge_length", "0.08"}, {"solver.stage", "full"}};
+  overrides.insert(overrides.end(), extra.begin(), extra.end());
+  return libraryScene("tablecloth.json", std::move(overrides));
 }
 
 // Steps until the drape has run one step; returns that step's report and the scene time the drape started at.
@@ -47,10 +55,7 @@ TEST(PipelineHandoff, DrapeFromThePreviewSkipsTheInitialRelaxation) {
   EXPECT_DOUBLE_EQ(firstDrapeStep(unscaled, &t0).h, unscaled.scene().settings.number("solver.newton.h_max"));
 
   // A drape from the placed garment keeps its relaxation.
-  SceneRequest request;
-  request.input = assetsDir() / "scenes" / "tablecloth.json";
-  request.overrides = {{"mesh.target_edge_length", "0.08"}, {"solver.stage", "drape"}};
-  Simulation direct(loadScene(request));
+  Simulation direct(libraryScene("tablecloth.json", {{"mesh.target_edge_length", "0.08"}, {"solver.stage", "drape"}}));
   EXPECT_DOUBLE_EQ(direct.step().h, direct.scene().settings.number("solver.newton.h_max") / 16.0);
 }
 
@@ -59,12 +64,9 @@ TEST(PipelineHandoff, DrapeFromThePreviewSkipsTheInitialRelaxation) {
 // (1.2 mm apart on average when written; 1 ms and 3 ms on the 1.5 cm default scene: 0.8 mm, docs/BENCHMARKS.md).
 TEST(PipelineHandoff, LongerStepsAfterThePreviewSettleToNearlyTheSameDrape) {
   auto drape = [](const char* factor, int* drapeSteps) {
-    SceneRequest request;
-    request.input = assetsDir() / "scenes" / "default.json";
-    request.overrides = {{"solver.stage", "full"},
-                         {"mesh.target_edge_length", "0.035"},
-                         {"solver.newton.h_max_factor_after_preview", factor}};
-    Simulation sim(loadScene(request));
+    Simulation sim(libraryScene("default.json", {{"solver.stage", "full"},
+                                                 {"mesh.target_edge_length", "0.035"},
+                                                 {"solver.newton.h_max_factor_after_preview", factor}}));
     *drapeSteps = 0;
     while (!sim.finished()) {
       const StepReport r = sim.step();
@@ -110,14 +112,11 @@ TEST(PipelineHandoff, PreviewHandsOverOnceTheHandoffSpeedHeldForTheWindow) {
 // own mesh, carried over from it, gets max_time again for its own settling (stop 27: the 1 cm t-shirt handed over
 // 0.16 s after its own mesh was sewn made the drape 1.3x slower than 0.5 s after the carry-over).
 TEST(PipelineHandoff, OwnMeshGetsThePreviewTimeAgainAfterTheCoarseAssembly) {
-  SceneRequest request;
-  request.input = assetsDir() / "scenes" / "default.json";
-  request.overrides = {{"solver.stage", "full"},
-                       {"mesh.target_edge_length", "0.02"},
-                       {"solver.preview.assembly_edge_length", "0.035"},
-                       {"solver.preview.handoff_speed", "0"},
-                       {"solver.preview.max_time", "0.35"}};
-  Simulation sim(loadScene(request));
+  Simulation sim(libraryScene("default.json", {{"solver.stage", "full"},
+                                               {"mesh.target_edge_length", "0.02"},
+                                               {"solver.preview.assembly_edge_length", "0.035"},
+                                               {"solver.preview.handoff_speed", "0"},
+                                               {"solver.preview.max_time", "0.35"}}));
   ASSERT_TRUE(sim.assembling());
   while (sim.assembling() && !sim.finished()) ASSERT_NE(sim.step().status, StepStatus::Diverged);
   const double carried = sim.time();
@@ -143,12 +142,9 @@ TEST(PipelineHandoff, TornPreviewIsGivenUpForTheDrapeFromThePlacedGarment) {
   // The first preview step of the default scene stretches a triangle along the closing seams by about 300 %: with a
   // failure strain of 200 % and no quasi-static start, that counts as the body passing through the cloth, and the
   // drape starts from the placed garment at scene time 0 (with its initial relaxation), not from the preview's state.
-  SceneRequest request;
-  request.input = assetsDir() / "scenes" / "default.json";
-  request.overrides = {{"solver.stage", "full"},
-                       {"solver.preview.failure_strain", "2"},
-                       {"solver.preview.relaxation_time", "0"}};
-  Simulation sim(loadScene(request));
+  Simulation sim(libraryScene("default.json", {{"solver.stage", "full"},
+                                               {"solver.preview.failure_strain", "2"},
+                                               {"solver.preview.relaxation_time", "0"}}));
   const Eigen::MatrixX3d placed = sim.positions();
   const StepReport first = sim.step();
   EXPECT_EQ(first.stage, "preview");
@@ -161,16 +157,14 @@ TEST(PipelineHandoff, TornPreviewIsGivenUpForTheDrapeFromThePlacedGarment) {
   EXPECT_DOUBLE_EQ(sim.step().h, sim.scene().settings.number("solver.newton.h_max") / 16.0);
 
   // At the default (500 %) the same step does not fail: the preview goes on.
-  request.overrides = {{"solver.stage", "full"}};
-  Simulation kept(loadScene(request));
+  Simulation kept(libraryScene("default.json", {{"solver.stage", "full"}}));
   kept.step();
   EXPECT_EQ(kept.stage(), "preview");
   EXPECT_TRUE(kept.previewFailure().empty());
 
   // With the default quasi-static start (0.05 s), the same overshoot falls inside it and is not counted either: the
   // seams' first closing may overshoot there and recover (docs/BENCHMARKS.md, stop 24).
-  request.overrides = {{"solver.stage", "full"}, {"solver.preview.failure_strain", "2"}};
-  Simulation relaxing(loadScene(request));
+  Simulation relaxing(libraryScene("default.json", {{"solver.stage", "full"}, {"solver.preview.failure_strain", "2"}}));
   const StepReport overshoot = relaxing.step();
   ASSERT_GT(overshoot.maxStrain, 2.0);
   ASSERT_LT(overshoot.time, relaxing.scene().settings.number("solver.preview.relaxation_time"));
@@ -182,12 +176,9 @@ TEST(PipelineHandoff, TornPreviewAloneGoesOnAndSaysItsResultIsWrong) {
   // The same torn first step, in a preview run on its own (the GUI's Preview, drape --simulate --solver preview):
   // nothing to fall back to, so the preview goes on, and previewFailure() says from that step on, once, that its
   // result is wrong.
-  SceneRequest request;
-  request.input = assetsDir() / "scenes" / "default.json";
-  request.overrides = {{"solver.stage", "preview"},
-                       {"solver.preview.failure_strain", "2"},
-                       {"solver.preview.relaxation_time", "0"}};
-  Simulation sim(loadScene(request));
+  Simulation sim(libraryScene("default.json", {{"solver.stage", "preview"},
+                                               {"solver.preview.failure_strain", "2"},
+                                               {"solver.preview.relaxation_time", "0"}}));
   ASSERT_TRUE(sim.previewFailure().empty());
   const StepReport first = sim.step();
   ASSERT_GT(first.maxStrain, 2.0);
