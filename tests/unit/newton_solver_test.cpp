@@ -206,11 +206,11 @@ TEST(NewtonSolver, RelaxationSettlesPreStretchedCloth) {
       ASSERT_NE(r.status, NewtonStatus::Diverged);
       ASSERT_TRUE(solver.positions().allFinite() && solver.velocities().allFinite());
       if (r.relaxing) {
-        if (relaxingSteps == 0) EXPECT_EQ(r.h, s.hMax / 16);
+        if (relaxingSteps == 0) { EXPECT_EQ(r.h, s.hMax / 16); }
         ++relaxingSteps;
         relaxedTime = r.time;
-        if (hold) EXPECT_LE(r.h, s.hMax / 16 + 1e-18);
-        if (!hold && r.splits == 0) EXPECT_GE(r.h, lastH);  // grows back unless a step had to split
+        if (hold) { EXPECT_LE(r.h, s.hMax / 16 + 1e-18); }
+        if (!hold && r.splits == 0) { EXPECT_GE(r.h, lastH); }  // grows back unless a step had to split
         EXPECT_EQ(solver.velocities().norm(), 0.0);
       }
       lastH = r.h;
@@ -219,7 +219,7 @@ TEST(NewtonSolver, RelaxationSettlesPreStretchedCloth) {
     std::printf("%s: relaxing steps %d, max edge stretch after 0.2 s: %.4f\n", hold ? "hold" : "grow",
                 relaxingSteps, stretch);
     EXPECT_GE(relaxedTime, 0.1 - s.hMax);  // the window lasts 0.1 s in both rules
-    if (hold) EXPECT_GE(relaxingSteps, 1000);  // 0.1 s at h_max / 16
+    if (hold) { EXPECT_GE(relaxingSteps, 1000); }  // 0.1 s at h_max / 16
     if (!hold) {
       EXPECT_LT(relaxingSteps, 200);  // back at h_max after ~10 growths of 5 steps
       EXPECT_EQ(lastH, s.hMax);

@@ -319,6 +319,47 @@ TEST(NewtonSpeedup, CompactLaggedDissipationsMatchTheirDefinition) {
   EXPECT_LT((gReused - gComputed).norm(), 1e-12 * gComputed.norm());
 }
 
+// A step's first Newton iterate x_n + h v_n is never its accepted state, so the gradient there (addGuessGradient)
+// is the full gradient, dissipations included, but leaves the records of the last pass for the next step's x_n: the
+// deformation gradients, the angle gradients and the step-start gradient.
+TEST(NewtonSpeedup, GuessGradientKeepsTheLastPassRecords) {
+  ClothModel m = gridCloth(12, 0.02, 0.3, 3);
+  const Eigen::VectorXd xn = gridCloth(12, 0.02, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(xn.size());
+  const Eigen::VectorXd& guess = m.positions;
+  const StepContext ctx = context(xn, v0, true);
+  StvkMembrane membrane(m);
+  HingeBending bending(m);
+  MembraneDissipation stretch(membrane.elements(), 1e-2);
+  BendingDissipation bend(bending.hinges(), 1e-1);
+  membrane.foldDissipation(&stretch);
+  membrane.setRecordDeformationGradients(true);
+  membrane.setRecordStepStartGradient(true);
+  stretch.setFolded(true);
+  bending.foldDissipation(&bend);
+  bending.setRecordAngleGradients(true);
+  bending.setRecordStepStartGradient(true);
+  bend.setFolded(true);
+  for (Energy* e : std::vector<Energy*>{&membrane, &bending, &stretch, &bend}) e->beginStep(ctx);
+  for (const Energy* e : std::vector<const Energy*>{&membrane, &bending}) {
+    Eigen::VectorXd atStart = Eigen::VectorXd::Zero(xn.size());
+    e->addGradient(xn, atStart);  // the last step's accepted line-search pass, at x_n
+    Eigen::VectorXd full = Eigen::VectorXd::Zero(xn.size()), atGuess = Eigen::VectorXd::Zero(xn.size());
+    e->addGradient(guess, full);
+    e->addGradient(xn, atStart);  // recorded at x_n again
+    e->addGuessGradient(guess, atGuess);
+    ASSERT_GT(full.norm(), 0.0) << e->name();
+    EXPECT_TRUE(atGuess == full) << e->name() << ": the same gradient, bit for bit";
+    Eigen::VectorXd recorded = Eigen::VectorXd::Zero(xn.size());
+    EXPECT_TRUE(e->addRecordedStepStartGradient(xn, recorded)) << e->name() << ": the record at x_n survives";
+    EXPECT_FALSE(e->addRecordedStepStartGradient(guess, recorded)) << e->name() << ": nothing recorded at the guess";
+  }
+  std::vector<Eigen::Matrix<double, 3, 2>> taken;
+  EXPECT_FALSE(membrane.takeRecordedDeformationGradients(guess, taken));
+  EXPECT_TRUE(membrane.takeRecordedDeformationGradients(xn, taken));
+  EXPECT_FALSE(bending.hasRecordedGradientsAt(guess, true));
+  EXPECT_TRUE(bending.hasRecordedGradientsAt(xn, true));
+}
+
 TEST(NewtonSpeedup, FastAssemblyEqualsSerialSearchAssembly) {
   ClothModel m = gridCloth(30, 0.01, 0.3, 3);  // 841 vertices: colours large enough to run in parallel chunks
   Eigen::VectorXd x0 = gridCloth(30, 0.01, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(x0.size());

@@ -263,22 +263,25 @@ bool HingeBending::takeRecordedGradients(const Eigen::VectorXd& x, bool closedFo
   return true;
 }
 
-void HingeBending::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
+void HingeBending::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const { gradientPass(x, g, true); }
+
+void HingeBending::gradientPass(const Eigen::VectorXd& x, Eigen::VectorXd& g, bool record) const {
   const bool closedForm = m_options.closedFormBending;
   const BendingDissipation* fold = m_options.foldDissipation ? m_dissipation : nullptr;
-  if (m_record) {
+  const bool recordAngles = record && m_record;
+  if (recordAngles) {
     m_recorded.resize(m_hinges.size());
     m_recordedOffsets.resize(m_hinges.size());
     m_recordedAt.resize(0);  // invalid until the pass is complete
   }
-  const bool recordGradient = m_recordedGradient.enabled;
+  const bool recordGradient = record && m_recordedGradient.enabled;
   if (recordGradient) m_recordedGradient.begin(x.size());
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
     for (int i = 0; i < count; ++i) {
       const Hinge& h = m_hinges[ids[i]];
       double phi = 0.0;
       const Grad12 grad = hingeBendGradient(h, x, closedForm, phi);
-      if (m_record) {
+      if (recordAngles) {
         Grad12& r = m_recorded[ids[i]];
         r = grad;
         m_recordedOffsets[ids[i]] = zeroSumOffset(h, x, r);
@@ -290,7 +293,7 @@ void HingeBending::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) con
     }
   });
   if (recordGradient) m_recordedGradient.finish(x, m_scale);
-  if (m_record) {
+  if (recordAngles) {
     m_recordedAt = x;
     m_recordedClosedForm = closedForm;
   }

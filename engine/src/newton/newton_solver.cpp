@@ -173,9 +173,11 @@ void NewtonSolver::momentumResidual(const Eigen::VectorXd& g, const Eigen::Vecto
 
 bool NewtonSolver::assembleFirstIteration(const Eigen::VectorXd& x, double h, bool atStepStart, Eigen::VectorXd& g,
                                           int& recordedGradients) {
+  const bool inPlace = m_matrixReady && !hasFreshTerms();
   const bool reuse = m_settings.hessianReuseSteps > 0 && m_elasticHessianH == h &&
                      m_elasticHessianAge < m_settings.hessianReuseSteps && m_lastNewtonIterations == 1 &&
-                     m_elasticHessian.size() == size_t(m_matrix.staticBlockCount());
+                     (inPlace || (m_elasticHessianCopied &&
+                                  m_elasticHessian.size() == size_t(m_matrix.staticBlockCount())));
   // At the step's start (relaxation: x = x_n, zero velocities) an energy may hand back the gradient its last
   // pass recorded there (the accepted state of the last step).
   auto recorded = [&](size_t k) {
@@ -183,10 +185,11 @@ bool NewtonSolver::assembleFirstIteration(const Eigen::VectorXd& x, double h, bo
     recordedGradients += used;
     return used;
   };
+  if (!reuse || !inPlace) m_matrixReady = false;
   if (reuse) {
-    m_matrix.setStaticValues(m_elasticHessian);
+    if (!inPlace) m_matrix.setStaticValues(m_elasticHessian);
     for (size_t k = 0; k < m_elasticCount; ++k)
-      if (!recorded(k)) m_energies[k]->addGradient(x, g);
+      if (!recorded(k)) m_energies[k]->addGuessGradient(x, g);
     ++m_elasticHessianAge;
   } else {
     m_coarseStale = true;
@@ -205,6 +208,7 @@ bool NewtonSolver::assembleFirstIteration(const Eigen::VectorXd& x, double h, bo
 
 void NewtonSolver::assembleHessian(const Eigen::VectorXd& x, double h) {
   m_coarseStale = true;
+  m_matrixReady = false;
   m_matrix.setZero();
   for (size_t k = 0; k < m_elasticCount; ++k) m_energies[k]->addHessian(x, m_matrix);
   saveElasticHessian(h);
@@ -213,9 +217,14 @@ void NewtonSolver::assembleHessian(const Eigen::VectorXd& x, double h) {
 
 void NewtonSolver::saveElasticHessian(double h) {
   if (m_settings.hessianReuseSteps <= 0) return;
-  m_elasticHessian = m_matrix.blocks();
+  m_elasticHessianCopied = hasFreshTerms();
+  if (m_elasticHessianCopied) m_elasticHessian = m_matrix.blocks();
   m_elasticHessianH = h;
   m_elasticHessianAge = 0;
+}
+
+bool NewtonSolver::hasFreshTerms() const {
+  return m_energies.size() > m_elasticCount || !m_matrix.dynamicEntries().empty();
 }
 
 NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, Eigen::VectorXd& v,
@@ -243,11 +252,13 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
     // (M + h^2 H) dv = b, solved as (M / h^2 + H) dv = b / h^2.
     t0 = Clock::now();
     if (it > 0) assembleHessian(x, h);
-    for (int i = 0; i < m_mass.size(); ++i) m_matrix.diagonalBlock(i).diagonal().array() += m_mass(i) * invH2;
+    if (!m_matrixReady)
+      for (int i = 0; i < m_mass.size(); ++i) m_matrix.diagonalBlock(i).diagonal().array() += m_mass(i) * invH2;
     // Contact, friction and the drag spring add fresh blocks in every iteration; without them the coarse factor
-    // lives as long as the elastic Hessian (hessianReuseSteps).
+    // lives as long as the elastic Hessian (hessianReuseSteps), and so does the matrix itself.
     const bool useCoarse = m_coarse && m_useCoarse;
-    const bool freshTerms = m_energies.size() > m_elasticCount || !m_matrix.dynamicEntries().empty();
+    const bool freshTerms = hasFreshTerms();
+    m_matrixReady = !freshTerms && m_settings.hessianReuseSteps > 0;
     if (useCoarse && (m_coarseStale || m_coarseH != h || freshTerms)) {
       m_coarse->factorize(m_matrix);
       m_coarseStale = false;
@@ -263,6 +274,7 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
       dv.resize(0);
     LinearSolveOptions linear = m_settings.linear;
     linear.coarse = useCoarse ? m_coarse.get() : nullptr;
+    linear.trueResidual = false;
     if (m_settings.cgForcing > 0.0 && rn > 0.0)
       linear.tolerance = std::max(linear.tolerance, std::min(0.5, m_settings.cgForcing * m_settings.tauNewton / rn));
     LinearSolveResult ls = solveLinear(m_matrix, b * invH2, dv, linear);

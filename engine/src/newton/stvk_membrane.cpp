@@ -85,11 +85,14 @@ double StvkMembrane::value(const Eigen::VectorXd& x) const {
   return m_scale * sum;
 }
 
-void StvkMembrane::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
+void StvkMembrane::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const { gradientPass(x, g, true); }
+
+void StvkMembrane::gradientPass(const Eigen::VectorXd& x, Eigen::VectorXd& g, bool recordPass) const {
   const MembraneDissipation* fold = m_options.foldDissipation ? m_dissipation : nullptr;
-  const bool record = m_recorded.enabled;
+  const bool record = recordPass && m_recorded.enabled;
+  const bool recordF = recordPass && m_recordF;
   if (record) m_recorded.begin(x.size());
-  if (m_recordF) {
+  if (recordF) {
     m_recordedF.resize(m_elements.size());
     m_recordedFAt.resize(0);  // invalid until the pass is complete
   }
@@ -98,7 +101,7 @@ void StvkMembrane::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) con
     for (int i = 0; i < count; ++i) {
       const MembraneElement& e = m_elements[ids[i]];
       const Eigen::Matrix<double, 3, 2> f = deformationGradient(e, x);
-      if (m_recordF) m_recordedF[ids[i]] = f;
+      if (recordF) m_recordedF[ids[i]] = f;
       // J^T sigma without forming J (greenStrainJacobian): vertex k gets
       // c_k0 s0 f0 + c_k1 s1 f1 + s2/2 (c_k0 f1 + c_k1 f0).
       const Eigen::Vector3d sigma = (m_scale * e.area) * greenStrain(f).cwiseProduct(voigtWeights(e));
@@ -111,7 +114,7 @@ void StvkMembrane::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) con
     }
   });
   if (record) m_recorded.finish(x, m_scale);
-  if (m_recordF) m_recordedFAt = x;
+  if (recordF) m_recordedFAt = x;
 }
 
 bool StvkMembrane::takeRecordedDeformationGradients(const Eigen::VectorXd& x,

@@ -59,6 +59,10 @@ class Energy {
   // Blocks between vertex pairs listed by addCouplings land in the static pattern; others (contacts)
   // go to the dynamic part automatically through BlockMatrix::addBlock or explicitly via addDynamicBlock.
   virtual void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const = 0;
+  // The gradient at a point no step ends at (a step's first Newton iterate x_n + h v_n: the accepted state always
+  // comes from a line-search pass). Energies that record their gradient passes for the next step (the step-start
+  // gradient, the dissipations' x_n data) skip the recording here. Default: addGradient.
+  virtual void addGuessGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const { addGradient(x, g); }
   // Both at the same x in one pass over the stencils (the first Newton iteration of a step needs both at
   // x_n + h v_n); energies whose Hessian work already yields the gradient override it. Default: both calls.
   virtual void addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const {

@@ -69,6 +69,7 @@ class HingeBending : public Energy {
   void beginStep(const StepContext& ctx) override;
   double value(const Eigen::VectorXd& x) const override;
   void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
+  void addGuessGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override { gradientPass(x, g, false); }
   // Default: Gauss-Newton k_e grad(phi) grad(phi)^T (SPD); exact adds k_e phi Hess(phi).
   void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const override;
   void addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const override;
@@ -110,6 +111,8 @@ class HingeBending : public Energy {
   mutable std::vector<double> m_recordedOffsets;                  // zeroSumOffset per hinge
   mutable Eigen::VectorXd m_recordedAt;
   mutable bool m_recordedClosedForm = true;
+  // addGradient (record: as set up) and addGuessGradient (record: false).
+  void gradientPass(const Eigen::VectorXd& x, Eigen::VectorXd& g, bool record) const;
   mutable RecordedGradient m_recordedGradient;  // elastic gradient of the last addGradient pass (no dissipation)
 };
 

@@ -29,11 +29,14 @@ struct LinearSolveOptions {
   // is added to the Diagonal or BlockJacobi preconditioner of the fused PCG; ignored by the other paths. nullptr:
   // one level.
   const CoarseSpace* coarse = nullptr;
+  // Compute LinearSolveResult::relativeResidual (one more product with A, in double). The Newton solver judges a
+  // step by its own residual and turns this off.
+  bool trueResidual = true;
 };
 
 struct LinearSolveResult {
   int iterations = 0;             // PCG iterations (0 for the direct solve)
-  double relativeResidual = 0.0;  // |Ax - b| / |b| of the returned x, computed in double
+  double relativeResidual = 0.0;  // |Ax - b| / |b| of the returned x, computed in double (-1: trueResidual off)
   bool ok = false;                // false on a failed factorisation or non-finite result
 };
 

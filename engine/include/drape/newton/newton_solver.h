@@ -170,15 +170,20 @@ class NewtonSolver {
   int m_goodSteps = 0;
   double m_restSince = -1.0;
   bool m_nearRest = false;  // this step started near rest (restAwareConvergence)
-  // Assembles the first iteration's gradient g and Hessian (m_matrix, without the mass term) at x: the elastic
-  // part reused when allowed (returns true), otherwise assembled and saved for reuse.
+  // Assembles the first iteration's gradient g and Hessian (m_matrix, without the mass term unless
+  // m_matrixReady says it is already there) at x: the elastic part reused when allowed (returns true), otherwise
+  // assembled and saved for reuse.
   // atStepStart: x is the step's start x_n and the velocities are zero (recorded gradients apply).
   bool assembleFirstIteration(const Eigen::VectorXd& x, double h, bool atStepStart, Eigen::VectorXd& g,
                               int& recordedGradients);
   // The Hessian of a later iteration at x, saving the elastic part for reuse.
   void assembleHessian(const Eigen::VectorXd& x, double h);
-  // Copies the static values of m_matrix as the reusable elastic Hessian (settings.hessianReuseSteps > 0).
+  // Marks m_matrix's static values as the reusable elastic Hessian for step h (settings.hessianReuseSteps > 0),
+  // copying them when fresh terms will be added on top (otherwise the matrix itself keeps them: m_matrixReady).
   void saveElasticHessian(double h);
+  // Whether the Newton matrix gets blocks beyond the elastic terms' in every iteration (contact, friction, the drag
+  // spring: energies after m_elasticCount, or dynamic entries).
+  bool hasFreshTerms() const;
 
   // m_energies[0, m_elasticCount) are the solver's own smooth terms (reusable Hessian); the rest (contact,
   // friction, the drag spring) are assembled afresh every iteration.
@@ -186,6 +191,10 @@ class NewtonSolver {
   std::vector<Eigen::Matrix3d> m_elasticHessian;  // static blocks of the elastic terms' Hessian, storage order
   double m_elasticHessianH = 0.0;                 // step size it was assembled for (0: none saved)
   int m_elasticHessianAge = 0;                    // steps it has been reused
+  bool m_elasticHessianCopied = false;            // m_elasticHessian holds it (else only m_matrix does)
+  // m_matrix is the elastic Hessian of m_elasticHessianH plus the mass term M / h^2 of that h and nothing else (no
+  // fresh terms): a reusing step solves with it as it stands, without copying a saved Hessian in.
+  bool m_matrixReady = false;
   int m_lastNewtonIterations = 0;                 // Newton iterations of the last accepted step (last attempt)
   // Velocity change of the last accepted step (3|V|, m/s) and its h (s): the PCG initial guess of the next step.
   Eigen::VectorXd m_lastDv;

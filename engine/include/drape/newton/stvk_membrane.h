@@ -42,6 +42,7 @@ class StvkMembrane : public Energy {
   void beginStep(const StepContext& ctx) override;
   double value(const Eigen::VectorXd& x) const override;
   void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
+  void addGuessGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override { gradientPass(x, g, false); }
   void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const override;
   void addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const override;
   void addCouplings(std::vector<std::pair<int, int>>& pairs) const override;
@@ -79,6 +80,8 @@ class StvkMembrane : public Energy {
   double m_scale = 1.0;
   bool m_exactHessian = false;
   AssemblyOptions m_options;
+  // addGradient (record: as set up) and addGuessGradient (record: false).
+  void gradientPass(const Eigen::VectorXd& x, Eigen::VectorXd& g, bool record) const;
   mutable RecordedGradient m_recorded;  // elastic gradient of the last addGradient pass (without the dissipation)
   bool m_recordF = false;
   mutable std::vector<Eigen::Matrix<double, 3, 2>> m_recordedF;  // F per triangle at m_recordedFAt
