@@ -35,6 +35,7 @@ nlohmann::json stepRecord(const StepReport& r) {
     j["assembly_time_s"] = r.assemblyTime;
     j["gradient_time_s"] = r.gradientTime;
     j["linear_solve_time_s"] = r.linearSolveTime;
+    j["hessian_reused"] = r.hessianReused;
   }
   return j;
 }

@@ -34,8 +34,10 @@ TEST(CliSimulate, DrapeWritesGarmentAndPerStepStats) {
   // Model only what the scene requires: no collider, so no contact or friction term.
   EXPECT_EQ(std::find(terms.begin(), terms.end(), "avatar_contact"), terms.end());
   EXPECT_EQ(std::find(terms.begin(), terms.end(), "friction"), terms.end());
+  int reused = 0;
   for (const auto& s : j.at("per_step")) {
     EXPECT_TRUE(std::isfinite(s.at("residual").get<double>()));
+    reused += s.at("hessian_reused").get<bool>();
     // Where the drape step's time went: assembly, gradient passes and linear solves, within the step's wall time.
     const double assembly = s.at("assembly_time_s"), gradient = s.at("gradient_time_s"),
                  solve = s.at("linear_solve_time_s");
@@ -44,6 +46,9 @@ TEST(CliSimulate, DrapeWritesGarmentAndPerStepStats) {
     EXPECT_GE(gradient, 0.0);
     EXPECT_LE(assembly + gradient + solve, s.at("wall_time_s").get<double>());
   }
+  // Hessian reuse (solver.newton.hessian_reuse_steps, default 4): some steps, never all (the first is fresh).
+  EXPECT_GT(reused, 0);
+  EXPECT_LT(reused, static_cast<int>(j.at("per_step").size()));
   EXPECT_NE(readWhole(obj).find("\nf "), std::string::npos);
 }
 

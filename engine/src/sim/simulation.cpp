@@ -416,6 +416,7 @@ StepReport Simulation::step() {
     report.assemblyTime = r.hessianSeconds;
     report.gradientTime = r.gradientSeconds;
     report.linearSolveTime = r.linearSolveSeconds;
+    report.hessianReused = r.hessianReused;
     report.splits = r.splits;
     report.residual = r.residual;
     report.kineticEnergy = r.kineticPercentile;

@@ -47,6 +47,7 @@ struct StepReport {
   double assemblyTime = 0.0;
   double gradientTime = 0.0;
   double linearSolveTime = 0.0;
+  bool hessianReused = false;  // drape: the first Newton iteration solved with an earlier step's elastic Hessian
   bool atRest = false;         // early stop reached
 };
 
