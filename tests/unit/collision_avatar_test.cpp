@@ -3,6 +3,7 @@
 // searches only the hint's neighbourhood.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -14,6 +15,27 @@ namespace drape::collision {
 namespace {
 
 using Eigen::Vector3d;
+
+// A random direction: a point of the cube [-1, 1]^3 drawn with u, normalised.
+Vector3d randomDirection(std::mt19937& rng, std::uniform_real_distribution<double>& u) {
+  Vector3d dir(u(rng), u(rng), u(rng));
+  dir.normalize();
+  return dir;
+}
+
+// Squared distance from p to triangle f of mesh.
+double triangleDistanceSquared(const TriangleMesh& mesh, int f, const Vector3d& p) {
+  return closestPointTriangle(p, mesh.vertices.row(mesh.triangles(f, 0)), mesh.vertices.row(mesh.triangles(f, 1)),
+                              mesh.vertices.row(mesh.triangles(f, 2)))
+      .distanceSquared;
+}
+
+// The exhaustive minimum over all triangles: the reference for the collider's tree and neighbourhood searches.
+double closestDistance(const TriangleMesh& mesh, const Vector3d& p) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int f = 0; f < mesh.triangleCount(); ++f) best = std::min(best, triangleDistanceSquared(mesh, f, p));
+  return std::sqrt(best);
+}
 
 TEST(CollisionAvatarTest, IcosphereSignedDistanceMatchesSphere) {
   const Vector3d centre(0.1, 1.2, -0.3);
@@ -27,8 +49,7 @@ TEST(CollisionAvatarTest, IcosphereSignedDistanceMatchesSphere) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   int inside = 0;
   for (int k = 0; k < 500; ++k) {
-    Vector3d dir(u(rng), u(rng), u(rng));
-    dir.normalize();
+    const Vector3d dir = randomDirection(rng, u);
     const double r = radius * (0.2 + 1.6 * (k % 100) / 100.0);
     const Vector3d p = centre + r * dir;
     const double analytic = r - radius;
@@ -43,14 +64,7 @@ TEST(CollisionAvatarTest, IcosphereSignedDistanceMatchesSphere) {
     EXPECT_NEAR(collider.signedDistance(p), s.signedDistance, 0.0);
     if (analytic < 0) ++inside;
     // Unsigned distance equals the exhaustive minimum over all triangles.
-    double best = std::numeric_limits<double>::infinity();
-    for (int f = 0; f < mesh.triangleCount(); ++f) {
-      best = std::min(best, closestPointTriangle(p, mesh.vertices.row(mesh.triangles(f, 0)),
-                                                 mesh.vertices.row(mesh.triangles(f, 1)),
-                                                 mesh.vertices.row(mesh.triangles(f, 2)))
-                                .distanceSquared);
-    }
-    EXPECT_NEAR(std::abs(s.signedDistance), std::sqrt(best), 1e-13);
+    EXPECT_NEAR(std::abs(s.signedDistance), closestDistance(mesh, p), 1e-13);
   }
   EXPECT_GT(inside, 100);
 }
@@ -131,34 +145,21 @@ TEST(CollisionAvatarTest, HintedQueryNearTheSurfaceFindsTheClosestOfAllTriangles
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   int local = 0;
   for (int k = 0; k < 4000; ++k) {
-    Vector3d dir(u(rng), u(rng), u(rng));
-    dir.normalize();
     SurfacePoint onSurface;
-    ASSERT_TRUE(collider.closest(0.2 * dir, onSurface));
+    ASSERT_TRUE(collider.closest(0.2 * randomDirection(rng, u), onSurface));
     // A point up to radius / 3 off the surface, hinted with the triangle of a point up to radius / 6 away.
     const Vector3d p = onSurface.closest + (radius / 3.0) * u(rng) * onSurface.normal;
     SurfacePoint previous;
     ASSERT_TRUE(collider.closest(p + (radius / 6.0) * Vector3d(u(rng), u(rng), u(rng)).normalized(), previous));
     const double bound = k % 2 ? 0.4 * radius : std::numeric_limits<double>::infinity();
-    double best = std::numeric_limits<double>::infinity();
-    for (int f = 0; f < mesh.triangleCount(); ++f)
-      best = std::min(best, closestPointTriangle(p, mesh.vertices.row(mesh.triangles(f, 0)),
-                                                 mesh.vertices.row(mesh.triangles(f, 1)),
-                                                 mesh.vertices.row(mesh.triangles(f, 2)))
-                                .distanceSquared);
-    const Eigen::Matrix3d corners = [&] {
-      Eigen::Matrix3d c;
-      for (int i = 0; i < 3; ++i) c.row(i) = mesh.vertices.row(mesh.triangles(previous.triangle, i));
-      return c;
-    }();
-    const double hintDistance = std::sqrt(
-        closestPointTriangle(p, corners.row(0), corners.row(1), corners.row(2)).distanceSquared);
+    const double best = closestDistance(mesh, p);
+    const double hintDistance = std::sqrt(triangleDistanceSquared(mesh, previous.triangle, p));
     local += hintDistance + std::min(hintDistance, bound) <= radius;
     SurfacePoint hinted;
     const bool hit = collider.closest(p, hinted, bound, previous.triangle);
-    ASSERT_EQ(hit, std::sqrt(best) < bound) << p.transpose();
+    ASSERT_EQ(hit, best < bound) << p.transpose();
     if (!hit) continue;
-    EXPECT_NEAR(std::abs(hinted.signedDistance), std::sqrt(best), 1e-13) << p.transpose();
+    EXPECT_NEAR(std::abs(hinted.signedDistance), best, 1e-13) << p.transpose();
     SurfacePoint plain;
     ASSERT_TRUE(collider.closest(p, plain, bound));
     EXPECT_NEAR(hinted.signedDistance, plain.signedDistance, 1e-13);
