@@ -141,24 +141,28 @@ TEST(NewtonInexact, HessianReuseFollowsItsRules) {
 // while reusing the Hessian in most steps.
 TEST(NewtonInexact, HessianReusedInPlaceEqualsTheSavedCopy) {
   const ClothModel m = hangingGrid();
-  NewtonSettings s = shortRelaxation();
-  s.hessianReuseSteps = 4;
-  NewtonSolver inPlace(m, s), restored(m, s);
-  restored.setDrag(0, restored.positions().segment<3>(0));
-  restored.setDrag(-1, Eigen::Vector3d::Zero());  // the drag energy stays, with no vertex
-  int reusedInPlace = 0, reusedRestored = 0;
-  for (int k = 0; k < 150; ++k) {
-    const NewtonStepReport a = inPlace.step(), b = restored.step();
-    ASSERT_EQ(a.status, NewtonStatus::Converged) << "step " << k;
-    ASSERT_EQ(b.status, NewtonStatus::Converged) << "step " << k;
-    reusedInPlace += a.hessianReused;
-    reusedRestored += b.hessianReused;
-    ASSERT_EQ(a.cgIterations, b.cgIterations) << "step " << k;
+  // In place, the PCG also keeps its preparation of the matrix (PcgCache: inverse blocks, the float copy).
+  for (bool mixed : {false, true}) {
+    NewtonSettings s = shortRelaxation();
+    s.hessianReuseSteps = 4;
+    s.linear.mixedPrecision = mixed;
+    NewtonSolver inPlace(m, s), restored(m, s);
+    restored.setDrag(0, restored.positions().segment<3>(0));
+    restored.setDrag(-1, Eigen::Vector3d::Zero());  // the drag energy stays, with no vertex
+    int reusedInPlace = 0, reusedRestored = 0;
+    for (int k = 0; k < 150; ++k) {
+      const NewtonStepReport a = inPlace.step(), b = restored.step();
+      ASSERT_EQ(a.status, NewtonStatus::Converged) << "step " << k << " mixed " << mixed;
+      ASSERT_EQ(b.status, NewtonStatus::Converged) << "step " << k << " mixed " << mixed;
+      reusedInPlace += a.hessianReused;
+      reusedRestored += b.hessianReused;
+      ASSERT_EQ(a.cgIterations, b.cgIterations) << "step " << k << " mixed " << mixed;
+    }
+    EXPECT_EQ(reusedInPlace, reusedRestored);
+    EXPECT_GT(reusedInPlace, 50);
+    EXPECT_TRUE(inPlace.positions() == restored.positions()) << "mixed " << mixed;
+    EXPECT_TRUE(inPlace.velocities() == restored.velocities()) << "mixed " << mixed;
+    const std::vector<std::string> names = restored.energyNames();
+    EXPECT_EQ(std::count(names.begin(), names.end(), "drag"), 1);
   }
-  EXPECT_EQ(reusedInPlace, reusedRestored);
-  EXPECT_GT(reusedInPlace, 50);
-  EXPECT_TRUE(inPlace.positions() == restored.positions());
-  EXPECT_TRUE(inPlace.velocities() == restored.velocities());
-  const std::vector<std::string> names = restored.energyNames();
-  EXPECT_EQ(std::count(names.begin(), names.end(), "drag"), 1);
 }

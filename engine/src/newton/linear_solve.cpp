@@ -115,33 +115,60 @@ void forRows(int n, const F& f) {
                     [&f](const tbb::blocked_range<int>& r) { f(r.begin(), r.end()); });
 }
 
-// The matrix in storage order with scalar S: static blocks (double ones used in place, float ones copied) and the
-// dynamic entries renumbered to storage rows.
+// A static block as the SpMV reads it: the double 3x3 block in place; a float block padded to 4 x 3, so that each
+// column is one SIMD packet and y += B x is three packet multiply-adds.
+template <typename S>
+using StoredBlock = std::conditional_t<std::is_same_v<S, float>, Eigen::Matrix<float, 4, 3>, Eigen::Matrix<S, 3, 3>>;
+
+// B v for a stored block (the padded float block: three packet multiply-adds).
+template <typename S>
+[[gnu::always_inline]] inline Eigen::Matrix<S, 3, 1> applyBlock(const StoredBlock<S>& b, const Eigen::Matrix<S, 3, 1>& v) {
+  if constexpr (std::is_same_v<S, float>)
+    return (b.col(0) * v(0) + b.col(1) * v(1) + b.col(2) * v(2)).template head<3>();
+  else
+    return b * v;
+}
+
+// Copies a 3x3 block into its stored form.
+template <typename S>
+void storeBlock(const Eigen::Matrix<S, 3, 3>& src, StoredBlock<S>& dst) {
+  dst.template topRows<3>() = src;
+  if constexpr (std::is_same_v<S, float>) dst.row(3).setZero();
+}
+
+// The matrix in storage order with scalar S: static blocks (double ones used in place, float ones copied and
+// padded) and the dynamic entries renumbered to storage rows.
 template <typename S>
 struct StorageMatrix {
   using Mat3 = Eigen::Matrix<S, 3, 3>;
+  using Block = StoredBlock<S>;
   using Vec = Eigen::Matrix<S, Eigen::Dynamic, 1>;
   struct Entry {
     int i, j;
     Mat3 block;
   };
-  const Mat3* blocks = nullptr;
-  std::vector<Mat3> copy;  // float blocks when S != double
+  const Block* blocks = nullptr;
+  std::vector<Block> copy;  // float blocks when S != double
   const int* rowStart = nullptr;
   const int* cols = nullptr;
   int n = 0;
   std::vector<Entry> dynamic;
 
-  explicit StorageMatrix(const BlockMatrix& a) : rowStart(a.rowStarts()), cols(a.colIndices()), n(a.numBlocks()) {
+  // floatBlocks: where the float copy of the static blocks is kept (filled when fill), nullptr for a local one.
+  explicit StorageMatrix(const BlockMatrix& a, std::vector<Block>* floatBlocks = nullptr, bool fill = true)
+      : rowStart(a.rowStarts()), cols(a.colIndices()), n(a.numBlocks()) {
     if constexpr (std::is_same_v<S, double>) {
       blocks = a.blocks().data();
     } else {
-      copy.resize(a.blocks().size());
-      const auto& src = a.blocks();
-      forRows(n, [&](int r0, int r1) {
-        for (int k = rowStart[r0]; k < rowStart[r1]; ++k) copy[k] = src[k].template cast<S>();
-      });
-      blocks = copy.data();
+      std::vector<Block>& dst = floatBlocks ? *floatBlocks : copy;
+      if (fill) {
+        dst.resize(a.blocks().size());
+        const auto& src = a.blocks();
+        forRows(n, [&](int r0, int r1) {
+          for (int k = rowStart[r0]; k < rowStart[r1]; ++k) storeBlock<S>(src[k].template cast<S>(), dst[k]);
+        });
+      }
+      blocks = dst.data();
     }
     for (const auto& e : a.dynamicEntries())
       dynamic.push_back({a.internalIndex(e.i), a.internalIndex(e.j), e.block.template cast<S>()});
@@ -152,9 +179,19 @@ struct StorageMatrix {
     double dot = reduceRows<double>(n, [&](int r0, int r1) {
       double acc = 0.0;
       for (int r = r0; r < r1; ++r) {
-        Eigen::Matrix<S, 3, 1> s = Eigen::Matrix<S, 3, 1>::Zero();
-        for (int k = rowStart[r]; k < rowStart[r + 1]; ++k)
-          s.noalias() += blocks[k] * x.template segment<3>(3 * cols[k]);
+        Eigen::Matrix<S, 3, 1> s;
+        if constexpr (std::is_same_v<S, float>) {
+          Eigen::Vector4f s4 = Eigen::Vector4f::Zero();
+          for (int k = rowStart[r]; k < rowStart[r + 1]; ++k) {
+            const float* xj = x.data() + 3 * cols[k];
+            s4.noalias() += blocks[k].col(0) * xj[0] + blocks[k].col(1) * xj[1] + blocks[k].col(2) * xj[2];
+          }
+          s = s4.head<3>();
+        } else {
+          s.setZero();
+          for (int k = rowStart[r]; k < rowStart[r + 1]; ++k)
+            s.noalias() += blocks[k] * x.template segment<3>(3 * cols[k]);
+        }
         y.template segment<3>(3 * r) = s;
         acc += static_cast<double>(x.template segment<3>(3 * r).dot(s));
       }
@@ -212,7 +249,7 @@ struct CoarseCorrection {
 // PCG on storage-ordered vectors; x in/out (initial guess when warm). Returns the iteration count. coarse: the
 // two-level correction added to z = inv r (nullptr or not ready: one level).
 template <typename S>
-int fusedPcg(const StorageMatrix<S>& a, const std::vector<Eigen::Matrix<S, 3, 3>>& inv,
+int fusedPcg(const StorageMatrix<S>& a, const std::vector<StoredBlock<S>>& inv,
              const Eigen::Matrix<S, Eigen::Dynamic, 1>& b, Eigen::Matrix<S, Eigen::Dynamic, 1>& x, double tol,
              int maxIt, bool warm, const CoarseSpace* coarse) {
   using Vec = Eigen::Matrix<S, Eigen::Dynamic, 1>;
@@ -231,7 +268,7 @@ int fusedPcg(const StorageMatrix<S>& a, const std::vector<Eigen::Matrix<S, 3, 3>
     for (int i = r0; i < r1; ++i) {
       Eigen::Matrix<S, 3, 1> ri = b.template segment<3>(3 * i);
       if (warm) ri -= ap.template segment<3>(3 * i);
-      const Eigen::Matrix<S, 3, 1> zi = inv[i] * ri;
+      const Eigen::Matrix<S, 3, 1> zi = applyBlock<S>(inv[i], ri);
       r.template segment<3>(3 * i) = ri;
       z.template segment<3>(3 * i) = zi;
       p.template segment<3>(3 * i) = zi;
@@ -261,7 +298,7 @@ int fusedPcg(const StorageMatrix<S>& a, const std::vector<Eigen::Matrix<S, 3, 3>
         for (int i = r0; i < r1; ++i) {
           x.template segment<3>(3 * i) += alpha * p.template segment<3>(3 * i);
           const Eigen::Matrix<S, 3, 1> ri = r.template segment<3>(3 * i) - alpha * ap.template segment<3>(3 * i);
-          const Eigen::Matrix<S, 3, 1> zi = inv[i] * ri;
+          const Eigen::Matrix<S, 3, 1> zi = applyBlock<S>(inv[i], ri);
           r.template segment<3>(3 * i) = ri;
           z.template segment<3>(3 * i) = zi;
           acc += Eigen::Vector2d(static_cast<double>(ri.dot(zi)), static_cast<double>(ri.squaredNorm()));
@@ -298,16 +335,43 @@ template <typename S>
 LinearSolveResult fusedSolve(const BlockMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                              const LinearSolveOptions& options, bool warm) {
   using Vec = Eigen::Matrix<S, Eigen::Dynamic, 1>;
+  using Mat3 = Eigen::Matrix<S, 3, 3>;
+  constexpr bool isFloat = std::is_same_v<S, float>;
   LinearSolveResult result;
-  std::vector<Eigen::Matrix<S, 3, 3>> inv;
-  if (options.preconditioner == Preconditioner::None)
-    inv.assign(a.numBlocks(), Eigen::Matrix<S, 3, 3>::Identity());
-  else
-    inv = inverseDiagonal<S>(a, options.preconditioner == Preconditioner::BlockJacobi, true);
+  // The preparation (inverse diagonal blocks, float copy) comes from the cache while the matrix is unchanged.
+  PcgCache* cache = a.dynamicEntries().empty() ? options.cache : nullptr;
+  std::vector<StoredBlock<S>> local;
+  std::vector<StoredBlock<S>>* invStore = &local;
+  std::vector<StoredBlock<S>>* floatBlocks = nullptr;
+  if (cache) {
+    if constexpr (isFloat) {
+      invStore = &cache->inverseFloat;
+      floatBlocks = &cache->blocksFloat;
+    } else {
+      invStore = &cache->inverse;
+    }
+  }
+  const bool cached = cache && cache->valid && cache->preconditioner == options.preconditioner &&
+                      cache->mixed == isFloat && invStore->size() == size_t(a.numBlocks());
+  if (!cached) {
+    std::vector<Mat3> inverse;
+    if (options.preconditioner == Preconditioner::None)
+      inverse.assign(a.numBlocks(), Mat3::Identity());
+    else
+      inverse = inverseDiagonal<S>(a, options.preconditioner == Preconditioner::BlockJacobi, true);
+    invStore->resize(inverse.size());
+    for (size_t i = 0; i < inverse.size(); ++i) storeBlock<S>(inverse[i], (*invStore)[i]);
+  }
   Eigen::VectorXd bi, xi;
   a.toInternal(b, bi);
   if (warm) a.toInternal(x, xi);
-  StorageMatrix<S> m(a);
+  StorageMatrix<S> m(a, floatBlocks, !cached);
+  if (cache) {
+    cache->valid = true;
+    cache->preconditioner = options.preconditioner;
+    cache->mixed = isFloat;
+  }
+  const std::vector<StoredBlock<S>>& inv = *invStore;
   Vec bs = bi.cast<S>(), xs;
   if (warm) xs = xi.cast<S>();
   result.iterations = fusedPcg<S>(m, inv, bs, xs, options.tolerance, options.maxIterations, warm, options.coarse);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "drape/core/percentile.h"
 #include "drape/newton/body_forces.h"
 #include "drape/newton/coarse_space.h"
 #include "drape/newton/hinge_bending.h"
@@ -17,15 +18,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// The value below which a fraction p of the values lie (the k-th smallest, k = ceil(p n)); 0 for none.
-double percentile(std::vector<double> values, double p) {
-  const int n = static_cast<int>(values.size());
-  if (n == 0) return 0.0;
-  const int k = std::clamp(static_cast<int>(std::ceil(p * n)) - 1, 0, n - 1);
-  std::nth_element(values.begin(), values.begin() + k, values.end());
-  return values[k];
-}
 
 }  // namespace
 
@@ -252,8 +244,10 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
     // (M + h^2 H) dv = b, solved as (M / h^2 + H) dv = b / h^2.
     t0 = Clock::now();
     if (it > 0) assembleHessian(x, h);
-    if (!m_matrixReady)
+    if (!m_matrixReady) {
       for (int i = 0; i < m_mass.size(); ++i) m_matrix.diagonalBlock(i).diagonal().array() += m_mass(i) * invH2;
+      m_pcgCache.valid = false;
+    }
     // Contact, friction and the drag spring add fresh blocks in every iteration; without them the coarse factor
     // lives as long as the elastic Hessian (hessianReuseSteps), and so does the matrix itself.
     const bool useCoarse = m_coarse && m_useCoarse;
@@ -275,6 +269,7 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
     LinearSolveOptions linear = m_settings.linear;
     linear.coarse = useCoarse ? m_coarse.get() : nullptr;
     linear.trueResidual = false;
+    linear.cache = m_matrixReady ? &m_pcgCache : nullptr;
     if (m_settings.cgForcing > 0.0 && rn > 0.0)
       linear.tolerance = std::max(linear.tolerance, std::min(0.5, m_settings.cgForcing * m_settings.tauNewton / rn));
     LinearSolveResult ls = solveLinear(m_matrix, b * invH2, dv, linear);

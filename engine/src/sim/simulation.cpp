@@ -7,6 +7,7 @@
 
 #include "drape/collision/avatar_collider.h"
 #include "drape/core/input_error.h"
+#include "drape/core/percentile.h"
 #include "drape/garment/garment_builder.h"
 #include "drape/garment/garment_transfer.h"
 #include "drape/geometry/strain.h"
@@ -76,14 +77,6 @@ void liftOutOf(const collision::AvatarCollider& collider, double thickness, doub
     if (collider.closest(x.row(v).transpose(), sp, reach) && sp.signedDistance < 0.0)
       x.row(v) = (sp.closest + thickness * sp.normal).transpose();
   }
-}
-
-// 99th percentile of values (copied).
-double percentile99(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const size_t k = std::min(values.size() - 1, static_cast<size_t>(0.99 * (values.size() - 1)));
-  std::nth_element(values.begin(), values.begin() + k, values.end());
-  return values[k];
 }
 
 }  // namespace
@@ -373,7 +366,7 @@ StepReport Simulation::step() {
       speeds[i] = v.segment<3>(3 * i).norm();
       energies[i] = 0.5 * masses[i] * speeds[i] * speeds[i];
     }
-    report.kineticEnergy = percentile99(std::move(energies));
+    report.kineticEnergy = percentile(std::move(energies), 0.99);
     // Settled: vertex speeds below the threshold for a 0.1 s window (as the drape's early stop). A preview that
     // hands over to the drape uses the looser hand-off speed: the drape settles the rest, and the preview's lagged
     // contact and friction keep a creep that the drape does not have.
@@ -382,7 +375,7 @@ StepReport Simulation::step() {
                                                                  : "solver.preview.handoff_speed");
     // A relaxing preview moves at most g h per step whatever its forces: its rest window opens after the relaxation.
     const bool relaxing = time() < m_scene.settings.number("solver.preview.relaxation_time") - 1e-12;
-    if (!assembling && !relaxing && percentile99(std::move(speeds)) < restSpeed && m_dragVertex < 0) {
+    if (!assembling && !relaxing && percentile(std::move(speeds), 0.99) < restSpeed && m_dragVertex < 0) {
       if (m_restSince < 0) m_restSince = time();
     } else {
       m_restSince = -1.0;

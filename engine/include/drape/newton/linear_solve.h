@@ -11,6 +11,18 @@ class CoarseSpace;
 enum class Preconditioner { None, Diagonal, BlockJacobi, IncompleteCholesky };
 enum class LinearSolverKind { Pcg, Cholmod };
 
+// What the fused PCG derives from a matrix before iterating: the preconditioner's inverse diagonal blocks and, for a
+// mixed-precision solve, the float copy of the static blocks. A caller that solves several times with an unchanged
+// matrix (the Newton solver reusing its Hessian in place) keeps one, hands it in through LinearSolveOptions::cache
+// and sets valid = false whenever the matrix changes; the solves in between skip the preparation.
+struct PcgCache {
+  bool valid = false;
+  Preconditioner preconditioner = Preconditioner::None;  // what the data were made for
+  bool mixed = false;
+  std::vector<Eigen::Matrix3d> inverse;
+  std::vector<Eigen::Matrix<float, 4, 3>> inverseFloat, blocksFloat;  // each column padded to a SIMD packet
+};
+
 struct LinearSolveOptions {
   LinearSolverKind kind = LinearSolverKind::Pcg;
   Preconditioner preconditioner = Preconditioner::BlockJacobi;
@@ -32,6 +44,9 @@ struct LinearSolveOptions {
   // Compute LinearSolveResult::relativeResidual (one more product with A, in double). The Newton solver judges a
   // step by its own residual and turns this off.
   bool trueResidual = true;
+  // Preparation kept from the last solve with the same matrix (fused PCG, matrix without dynamic entries); nullptr:
+  // prepared afresh.
+  PcgCache* cache = nullptr;
 };
 
 struct LinearSolveResult {

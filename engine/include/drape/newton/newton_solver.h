@@ -195,6 +195,8 @@ class NewtonSolver {
   // m_matrix is the elastic Hessian of m_elasticHessianH plus the mass term M / h^2 of that h and nothing else (no
   // fresh terms): a reusing step solves with it as it stands, without copying a saved Hessian in.
   bool m_matrixReady = false;
+  // The PCG's preparation of m_matrix (inverse diagonal blocks, float copy), kept while m_matrixReady.
+  PcgCache m_pcgCache;
   int m_lastNewtonIterations = 0;                 // Newton iterations of the last accepted step (last attempt)
   // Velocity change of the last accepted step (3|V|, m/s) and its h (s): the PCG initial guess of the next step.
   Eigen::VectorXd m_lastDv;
