@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "drape/collision/avatar_collider.h"
@@ -19,6 +21,14 @@
 
 namespace drape::test {
 namespace {
+
+// The default scene (t-shirt on the default mannequin) with the given setting overrides.
+Scene defaultScene(std::vector<std::pair<std::string, std::string>> overrides) {
+  SceneRequest request;
+  request.input = assetsDir() / "scenes" / "default.json";
+  request.overrides = std::move(overrides);
+  return loadScene(request);
+}
 
 struct OffBody {
   int inside = 0;  // deeper inside the body than the contact thickness
@@ -43,10 +53,7 @@ OffBody offBody(const collision::AvatarCollider& body, const Simulation& sim, co
 // from the shoulders, instead of a back hem perched on the small of the back); QuasiStaticStartKeepsTheBackHemDown
 // covers the default.
 TEST(PdTshirtPreview, DefaultSceneStaysOnTheBodyAndHandsOverToTheDrape) {
-  SceneRequest request;
-  request.input = assetsDir() / "scenes" / "default.json";
-  request.overrides = {{"solver.stage", "full"}, {"solver.preview.relaxation_time", "0"}};
-  Simulation sim(loadScene(request));
+  Simulation sim(defaultScene({{"solver.stage", "full"}, {"solver.preview.relaxation_time", "0"}}));
   const collision::AvatarCollider body(mergedColliders(sim.scene()));
   // Closing the seams stretches triangles along them for a few hundredths of a second; after that phase (0.1 s)
   // the largest stretch stays moderate, and the shirt does not slide off.
@@ -78,13 +85,10 @@ TEST(PdTshirtPreview, DefaultSceneStaysOnTheBodyAndHandsOverToTheDrape) {
 // body within 0.5 s (docs/BENCHMARKS.md). The scenes' default step is 1/480 s since stop 26; this test keeps the
 // paper's step, its subject.
 TEST(PdTshirtPreview, SewnShirtConvergesAtThePapersStepAndStaysPut) {
-  SceneRequest request;
-  request.input = assetsDir() / "scenes" / "default.json";
-  request.overrides = {{"solver.stage", "preview"},
-                       {"solver.max_sim_time", "3"},
-                       {"solver.preview.relaxation_time", "0"},
-                       {"solver.preview.time_step", "0.008333333333333333"}};
-  Simulation sim(loadScene(request));
+  Simulation sim(defaultScene({{"solver.stage", "preview"},
+                               {"solver.max_sim_time", "3"},
+                               {"solver.preview.relaxation_time", "0"},
+                               {"solver.preview.time_step", "0.008333333333333333"}}));
   const collision::AvatarCollider body(mergedColliders(sim.scene()));
   double sewnAt = -1.0;
   while (!sim.finished()) {
@@ -122,10 +126,11 @@ TEST(PdTshirtPreview, SewnShirtConvergesAtThePapersStepAndStaysPut) {
   ASSERT_TRUE(x.allFinite());
   const double meanDrop = (start.col(1) - x.col(1)).mean();
   const double meanMove = (x - start).rowwise().norm().mean();
-  std::printf("[ PdTshirtPreview ] sewn at t = %.3f s; then %d steps to t = %.3f s: %d at 1/120 s, %d capped, %.2f "
-              "L-G iterations per step; mean move %.1f mm, mean drop %.1f mm, largest stretch %.0f %%\n", sewnAt, steps,
-              time, atPaperStep, capped, static_cast<double>(iterations) / std::max(steps, 1), 1e3 * meanMove,
-              1e3 * meanDrop, 100.0 * worstStrain);
+  std::printf(
+      "[ PdTshirtPreview ] sewn at t = %.3f s; then %d steps to t = %.3f s: %d at 1/120 s, %d capped, %.2f "
+      "L-G iterations per step; mean move %.1f mm, mean drop %.1f mm, largest stretch %.0f %%\n",
+      sewnAt, steps, time, atPaperStep, capped, static_cast<double>(iterations) / std::max(steps, 1), 1e3 * meanMove,
+      1e3 * meanDrop, 100.0 * worstStrain);
   EXPECT_GE(steps, 20);
   // The assembly's halved steps grow back (grow_after_steps converged steps per doubling); then all are at 1/120 s.
   EXPECT_GT(late, 20);
@@ -143,10 +148,7 @@ TEST(PdTshirtPreview, SewnShirtConvergesAtThePapersStepAndStaysPut) {
 // back hem up (6.6 cm within 5 ms at one vertex) onto the small of the back, where the drape kept it (the pipeline's
 // drape ended 24.8 mm from Newton alone's, the back hem 6 cm higher). With it (the default), the hem comes down.
 TEST(PdTshirtPreview, QuasiStaticStartKeepsTheBackHemDown) {
-  SceneRequest request;
-  request.input = assetsDir() / "scenes" / "default.json";
-  request.overrides = {{"solver.stage", "full"}};
-  Simulation sim(loadScene(request));
+  Simulation sim(defaultScene({{"solver.stage", "full"}}));
   const collision::AvatarCollider body(mergedColliders(sim.scene()));
   // The back panel's hem: the lowest placed vertices behind the body.
   const Eigen::MatrixX3d placed = sim.positions();
@@ -188,10 +190,8 @@ TEST(PdTshirtPreview, QuasiStaticStartKeepsTheBackHemDown) {
 // sews it on a 2 cm meshing of the pattern (solver.preview.assembly_edge_length) and carries the sewn garment over to
 // the 1 cm mesh, where it counts as sewn again and keeps the shirt on the body.
 TEST(PdTshirtPreview, FineShirtIsSewnOnACoarserMeshAndCarriedOver) {
-  SceneRequest request;
-  request.input = assetsDir() / "scenes" / "default.json";
-  request.overrides = {{"solver.stage", "preview"}, {"mesh.target_edge_length", "0.01"}, {"solver.max_sim_time", "3"}};
-  Simulation sim(loadScene(request));
+  Simulation sim(
+      defaultScene({{"solver.stage", "preview"}, {"mesh.target_edge_length", "0.01"}, {"solver.max_sim_time", "3"}}));
   const collision::AvatarCollider body(mergedColliders(sim.scene()));
   ASSERT_TRUE(sim.assembling());
   ASSERT_GT(sim.garment().vertexCount(), 10000);
@@ -247,9 +247,10 @@ TEST(PdTshirtPreview, FineShirtIsSewnOnACoarserMeshAndCarriedOver) {
   std::sort(stretch.begin(), stretch.end());
   const double p99 = stretch[static_cast<Eigen::Index>(0.99 * (stretch.size() - 1))];
   const OffBody off = offBody(body, sim, x);
-  std::printf("[ PdTshirtPreview ] 1 cm shirt: carried over at t = %.3f s (largest stitch gap %.2f mm), sewn at %.3f "
-              "s; at t = %.3f s after %d steps (%d capped): stretch p99 %.0f %%, largest %.0f %%\n", handover,
-              1e3 * gapAtHandover, sewnAt, time, steps, capped, 100.0 * p99, 100.0 * stretch[stretch.size() - 1]);
+  std::printf(
+      "[ PdTshirtPreview ] 1 cm shirt: carried over at t = %.3f s (largest stitch gap %.2f mm), sewn at %.3f "
+      "s; at t = %.3f s after %d steps (%d capped): stretch p99 %.0f %%, largest %.0f %%\n",
+      handover, 1e3 * gapAtHandover, sewnAt, time, steps, capped, 100.0 * p99, 100.0 * stretch[stretch.size() - 1]);
   EXPECT_LT(p99, 0.4);
   EXPECT_LT(stretch[stretch.size() - 1], 1.2);
   EXPECT_LE(capped, steps / 10);
