@@ -125,7 +125,8 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"solver.cg.max_iterations", T::Integer, "500", "", "PCG iteration cap", 1, 1e6},
       {"solver.cg.preconditioner", T::Choice, "block_jacobi", "", "PCG preconditioner", -1e300, 1e300,
        {"none", "diagonal", "block_jacobi", "incomplete_cholesky", "cholmod_direct"}},
-      {"solver.cg.mixed_precision", T::Boolean, "false", "", "PCG in single precision (derivatives stay double)"},
+      {"solver.cg.mixed_precision", T::Boolean, "true", "",
+       "PCG in single precision (derivatives, the Newton residual and the line search stay double)"},
       {"solver.cg.forcing", T::Number, "0", "",
        "inexact Newton: PCG stops once its residual is this fraction of tau_n (relative tolerance at most 0.5, at "
        "least solver.cg.tolerance); 0: always solver.cg.tolerance", 0, 1},
