@@ -120,9 +120,11 @@ void forRows(int n, const F& f) {
 template <typename S>
 using StoredBlock = std::conditional_t<std::is_same_v<S, float>, Eigen::Matrix<float, 4, 3>, Eigen::Matrix<S, 3, 3>>;
 
-// B v for a stored block (the padded float block: three packet multiply-adds).
+// B v for a stored block (the padded float block: three packet multiply-adds). Forced inline: GCC otherwise calls
+// it from the PCG's row loops.
 template <typename S>
-[[gnu::always_inline]] inline Eigen::Matrix<S, 3, 1> applyBlock(const StoredBlock<S>& b, const Eigen::Matrix<S, 3, 1>& v) {
+[[gnu::always_inline]] inline Eigen::Matrix<S, 3, 1> applyBlock(const StoredBlock<S>& b,
+                                                                const Eigen::Matrix<S, 3, 1>& v) {
   if constexpr (std::is_same_v<S, float>)
     return (b.col(0) * v(0) + b.col(1) * v(1) + b.col(2) * v(2)).template head<3>();
   else
