@@ -92,6 +92,13 @@ bool CoarseSpace::factorize(const BlockMatrix& a) {
     add(m_slotOf.at({aj, ai}), e.block.transpose());
   }
   if (!m_factor->analysed) {
+    // A fill-reducing ordering, the better of minimum degree and nested dissection. CHOLMOD's default strategy kept
+    // the rows' own (RCM-derived) order here: 1.8x the factor's entries and 3x the factorisation's flops of nested
+    // dissection on the coarse twisting square (docs/BENCHMARKS.md, "Stop 30").
+    cholmod_common& common = m_factor->llt.cholmod();
+    common.nmethods = 2;
+    common.method[0].ordering = CHOLMOD_AMD;
+    common.method[1].ordering = CHOLMOD_NESDIS;
     m_factor->llt.analyzePattern(m_coarse);
     m_factor->analysed = true;
   }
