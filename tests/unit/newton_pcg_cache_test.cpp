@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "drape/newton/linear_solve.h"
 #include "newton_test_matrices.h"
