@@ -9,6 +9,7 @@
 #include <Eigen/LU>
 #include <cmath>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "drape/newton/coarse_space.h"
@@ -363,8 +364,12 @@ LinearSolveResult fusedSolve(const BlockMatrix& a, const Eigen::VectorXd& b, Eig
       inverse.assign(a.numBlocks(), Mat3::Identity());
     else
       inverse = inverseDiagonal<S>(a, options.preconditioner == Preconditioner::BlockJacobi, true);
-    invStore->resize(inverse.size());
-    for (size_t i = 0; i < inverse.size(); ++i) storeBlock<S>(inverse[i], (*invStore)[i]);
+    if constexpr (isFloat) {
+      invStore->resize(inverse.size());
+      for (size_t i = 0; i < inverse.size(); ++i) storeBlock<S>(inverse[i], (*invStore)[i]);
+    } else {
+      *invStore = std::move(inverse);  // the stored double block is the 3x3 block itself
+    }
   }
   Eigen::VectorXd bi, xi;
   a.toInternal(b, bi);
