@@ -79,12 +79,6 @@ Eigen::Matrix<double, 12, 12> autodiffHessian(const Grad12& q, F&& f) {
   return 0.5 * (h + h.transpose());
 }
 
-Grad12 gather(const Hinge& h, const Eigen::VectorXd& x) {
-  Grad12 q;
-  for (int k = 0; k < 4; ++k) q.segment<3>(3 * k) = x.segment<3>(3 * h.v[k]);
-  return q;
-}
-
 Grad12 autodiffGradient(const Grad12& q, double& theta) {
   Eigen::Matrix<Ad, 12, 1> qa;
   for (int i = 0; i < 12; ++i) qa(i) = Ad(q(i), 12, i);
@@ -115,6 +109,12 @@ Grad12 closedFormGradient(const Grad12& q, double& theta) {
 }
 
 }  // namespace
+
+HingeCoords gatherHinge(const Hinge& hinge, const Eigen::VectorXd& x) {
+  HingeCoords q;
+  for (int k = 0; k < 4; ++k) q.segment<3>(3 * k) = x.segment<3>(3 * hinge.v[k]);
+  return q;
+}
 
 std::vector<Hinge> buildHinges(const ClothModel& model) {
   std::map<std::pair<int, int>, std::pair<int, int>> edges;  // sorted edge -> (triangle, local index of opposite)
@@ -155,29 +155,34 @@ std::vector<Hinge> buildHinges(const ClothModel& model) {
   return out;
 }
 
-double hingeAngle(const Hinge& hinge, const Eigen::VectorXd& x) { return angleOf<double>(gather(hinge, x)); }
+double hingeAngle(const Hinge& hinge, const Eigen::VectorXd& x) {
+  return angleOf<double>(gatherHinge(hinge, x));
+}
 
 Grad12 hingeAngleGradient(const Hinge& hinge, const Eigen::VectorXd& x) {
   double theta = 0.0;
-  return closedFormGradient(gather(hinge, x), theta);
+  return closedFormGradient(gatherHinge(hinge, x), theta);
 }
 
 Grad12 hingeAngleGradientAutodiff(const Hinge& hinge, const Eigen::VectorXd& x) {
   double theta = 0.0;
-  return autodiffGradient(gather(hinge, x), theta);
+  return autodiffGradient(gatherHinge(hinge, x), theta);
 }
 
 Grad12 hingeAngleGradient(const Hinge& hinge, const Eigen::VectorXd& x, bool closedForm, double& theta) {
-  Grad12 q = gather(hinge, x);
+  Grad12 q = gatherHinge(hinge, x);
   return closedForm ? closedFormGradient(q, theta) : autodiffGradient(q, theta);
 }
 
 Eigen::Matrix<double, 12, 12> hingeAngleHessian(const Hinge& hinge, const Eigen::VectorXd& x) {
-  return autodiffHessian(gather(hinge, x), [](const Eigen::Matrix<AdAd, 12, 1>& qa) { return angleOf<AdAd>(qa); });
+  return autodiffHessian(gatherHinge(hinge, x), [](const Eigen::Matrix<AdAd, 12, 1>& qa) { return angleOf<AdAd>(qa); });
 }
 
 Grad12 hingeBendGradient(const Hinge& hinge, const Eigen::VectorXd& x, bool closedForm, double& phi) {
-  const Grad12 q = gather(hinge, x);
+  return hingeBendGradient(hinge, gatherHinge(hinge, x), closedForm, phi);
+}
+
+Grad12 hingeBendGradient(const Hinge& hinge, const HingeCoords& q, bool closedForm, double& phi) {
   const Eigen::Vector3d x0 = q.segment<3>(0), e = q.segment<3>(3) - x0;
   const Eigen::Vector3d d2 = q.segment<3>(6) - x0, d3 = q.segment<3>(9) - x0;
   const Eigen::Vector3d na = e.cross(d2), nb = d3.cross(e);
@@ -212,11 +217,11 @@ Grad12 hingeBendGradient(const Hinge& hinge, const Eigen::VectorXd& x, bool clos
 }
 
 double hingeBendMeasure(const Hinge& hinge, const Eigen::VectorXd& x) {
-  return measureOf<double>(gather(hinge, x), hinge.restNormalLength);
+  return measureOf<double>(gatherHinge(hinge, x), hinge.restNormalLength);
 }
 
 Eigen::Matrix<double, 12, 12> hingeBendHessian(const Hinge& hinge, const Eigen::VectorXd& x) {
-  return autodiffHessian(gather(hinge, x), [&](const Eigen::Matrix<AdAd, 12, 1>& qa) {
+  return autodiffHessian(gatherHinge(hinge, x), [&](const Eigen::Matrix<AdAd, 12, 1>& qa) {
     return measureOf<AdAd>(qa, hinge.restNormalLength);
   });
 }
@@ -243,10 +248,14 @@ double HingeBending::value(const Eigen::VectorXd& x) const {
 }
 
 double zeroSumOffset(const Hinge& hinge, const Eigen::VectorXd& x, Grad12& g) {
+  return zeroSumOffset(gatherHinge(hinge, x), g);
+}
+
+double zeroSumOffset(const HingeCoords& q, Grad12& g) {
   g.segment<3>(0) = -(g.segment<3>(3) + g.segment<3>(6) + g.segment<3>(9));
-  const Eigen::Vector3d x0 = x.segment<3>(3 * hinge.v[0]);
+  const Eigen::Vector3d x0 = q.segment<3>(0);
   double sum = 0.0;
-  for (int k = 1; k < 4; ++k) sum += g.segment<3>(3 * k).dot(x.segment<3>(3 * hinge.v[k]) - x0);
+  for (int k = 1; k < 4; ++k) sum += g.segment<3>(3 * k).dot(q.segment<3>(3 * k) - x0);
   return sum;
 }
 
@@ -279,16 +288,17 @@ void HingeBending::gradientPass(const Eigen::VectorXd& x, Eigen::VectorXd& g, bo
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
     for (int i = 0; i < count; ++i) {
       const Hinge& h = m_hinges[ids[i]];
+      const HingeCoords q = gatherHinge(h, x);
       double phi = 0.0;
-      const Grad12 grad = hingeBendGradient(h, x, closedForm, phi);
+      const Grad12 grad = hingeBendGradient(h, q, closedForm, phi);
       if (recordAngles) {
         Grad12& r = m_recorded[ids[i]];
         r = grad;
-        m_recordedOffsets[ids[i]] = zeroSumOffset(h, x, r);
+        m_recordedOffsets[ids[i]] = zeroSumOffset(q, r);
       }
       Grad12 ge = (m_scale * h.stiffness * phi) * grad;
       if (recordGradient) m_stencils.addGradient(ids[i], ge, m_recordedGradient.gradient);
-      if (fold) ge += fold->stencilGradient(ids[i], x);
+      if (fold) ge += fold->stencilGradient(ids[i], q, h.stiffness);
       m_stencils.addGradient(ids[i], ge, g);
     }
   });
@@ -313,14 +323,15 @@ void HingeBending::assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockM
     Grad12 gd;
     for (int i = 0; i < count; ++i) {
       const Hinge& h = m_hinges[ids[i]];
+      const HingeCoords q = gatherHinge(h, x);
       double phi = 0.0;
-      Grad12 grad = hingeBendGradient(h, x, closedForm, phi);
+      Grad12 grad = hingeBendGradient(h, q, closedForm, phi);
       Eigen::Matrix<double, 12, 12> he = grad * grad.transpose();
       if (m_exactHessian) he += phi * hingeBendHessian(h, x);
       he *= m_scale * h.stiffness;
       Grad12 ge = (m_scale * h.stiffness * phi) * grad;
       if (fold) {
-        he += fold->stencilDerivatives(ids[i], x, g ? &gd : nullptr);
+        he += fold->stencilDerivatives(ids[i], q, h.stiffness, g ? &gd : nullptr);
         if (g) ge += gd;
       }
       m_stencils.addHessian(ids[i], he, hm, cached);

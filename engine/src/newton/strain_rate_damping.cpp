@@ -34,7 +34,6 @@ MembraneDissipation::MembraneDissipation(std::vector<MembraneElement> elements, 
   for (const auto& e : m_elements) stencils.push_back(e.v);
   m_stencils = StencilSet<3>(std::move(stencils));
   m_startF.resize(m_elements.size());
-  for (const auto& e : m_elements) m_stiffness.push_back(e.area * Eigen::Vector3d(e.kWarp, e.kWeft, 2.0 * e.kShear));
 }
 
 void MembraneDissipation::beginStep(const StepContext& ctx) {
@@ -57,22 +56,22 @@ double MembraneDissipation::value(const Eigen::VectorXd& x) const {
   double sum = 0.0;
   for (int s = 0; s < m_stencils.size(); ++s) {
     const Eigen::Vector3d rate = strainChange(s, deformationGradient(m_elements[s], x));
-    sum += 0.5 * rate.dot(weights(s).cwiseProduct(rate));
+    sum += 0.5 * rate.dot(weights(m_elements[s]).cwiseProduct(rate));
   }
   return sum;
 }
 
 Eigen::Matrix<double, 9, 1> MembraneDissipation::stencilGradient(int s, const Eigen::VectorXd& x) const {
-  return stencilGradient(s, deformationGradient(m_elements[s], x));
+  return stencilGradient(s, m_elements[s], deformationGradient(m_elements[s], x));
 }
 
-Eigen::Matrix<double, 9, 1> MembraneDissipation::stencilGradient(int s, const Eigen::Matrix<double, 3, 2>& f) const {
+Eigen::Matrix<double, 9, 1> MembraneDissipation::stencilGradient(int s, const MembraneElement& e,
+                                                                 const Eigen::Matrix<double, 3, 2>& f) const {
   // J^T sigma without forming J: vertex k gets c_k0 (s0 f0 + s2/2 f1) + c_k1 (s1 f1 + s2/2 f0), f = F_n.
-  const Eigen::Vector3d sigma = weights(s).cwiseProduct(strainChange(s, f));
+  const Eigen::Vector3d sigma = weights(e).cwiseProduct(strainChange(s, f));
   const Eigen::Matrix<double, 3, 2>& fn = m_startF[s];
   const Eigen::Vector3d a = sigma(0) * fn.col(0) + 0.5 * sigma(2) * fn.col(1);
   const Eigen::Vector3d b = sigma(1) * fn.col(1) + 0.5 * sigma(2) * fn.col(0);
-  const MembraneElement& e = m_elements[s];
   Eigen::Matrix<double, 9, 1> ge;
   for (int k = 0; k < 3; ++k) ge.segment<3>(3 * k) = e.c[k](0) * a + e.c[k](1) * b;
   return ge;
@@ -85,15 +84,16 @@ void MembraneDissipation::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd&
   });
 }
 
-Eigen::Matrix<double, 9, 9> MembraneDissipation::stencilHessian(int s) const {
-  const Eigen::Matrix<double, 3, 9> j = greenStrainJacobian(m_elements[s], m_startF[s]);
-  return (j.transpose() * weights(s).asDiagonal()).lazyProduct(j);  // coefficient-based: no GEMM for 9 x 3 x 9
+Eigen::Matrix<double, 9, 9> MembraneDissipation::stencilHessian(int s, const MembraneElement& e) const {
+  const Eigen::Matrix<double, 3, 9> j = greenStrainJacobian(e, m_startF[s]);
+  return (j.transpose() * weights(e).asDiagonal()).lazyProduct(j);  // coefficient-based: no GEMM for 9 x 3 x 9
 }
 
-Eigen::Matrix<double, 9, 9> MembraneDissipation::stencilDerivatives(int s, const Eigen::Matrix<double, 3, 2>& f,
+Eigen::Matrix<double, 9, 9> MembraneDissipation::stencilDerivatives(int s, const MembraneElement& e,
+                                                                    const Eigen::Matrix<double, 3, 2>& f,
                                                                     Eigen::Matrix<double, 9, 1>* ge) const {
-  if (ge) *ge = stencilGradient(s, f);
-  return stencilHessian(s);
+  if (ge) *ge = stencilGradient(s, e, f);
+  return stencilHessian(s, e);
 }
 
 void MembraneDissipation::addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const { assemble(x, nullptr, h); }
@@ -108,7 +108,7 @@ void MembraneDissipation::assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g,
   if (cached) m_stencils.prepare(h);
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
     for (int i = 0; i < count; ++i) {
-      m_stencils.addHessian(ids[i], stencilHessian(ids[i]), h, cached);
+      m_stencils.addHessian(ids[i], stencilHessian(ids[i], m_elements[ids[i]]), h, cached);
       if (g) m_stencils.addGradient(ids[i], stencilGradient(ids[i], x), *g);
     }
   });
@@ -137,26 +137,29 @@ void BendingDissipation::beginStep(const StepContext& ctx) {
   });
 }
 
-double BendingDissipation::angleChange(int s, const Eigen::VectorXd& x) const {
-  const std::array<int, 4>& v = m_stencils[s];
-  const Eigen::Vector3d x0 = x.segment<3>(3 * v[0]);
+double BendingDissipation::angleChange(int s, const HingeCoords& q) const {
+  const Eigen::Vector3d x0 = q.segment<3>(0);
   const Eigen::Matrix<double, 12, 1>& g = m_gradients[s];
   double sum = 0.0;
-  for (int k = 1; k < 4; ++k) sum += g.segment<3>(3 * k).dot(x.segment<3>(3 * v[k]) - x0);
+  for (int k = 1; k < 4; ++k) sum += g.segment<3>(3 * k).dot(q.segment<3>(3 * k) - x0);
   return sum - m_offsets[s];
 }
 
 double BendingDissipation::value(const Eigen::VectorXd& x) const {
   double sum = 0.0;
   for (int s = 0; s < m_stencils.size(); ++s) {
-    const double rate = angleChange(s, x);
+    const double rate = angleChange(s, gatherHinge(m_hinges[s], x));
     sum += 0.5 * (m_factor * m_hinges[s].stiffness) * rate * rate;
   }
   return sum;
 }
 
 Eigen::Matrix<double, 12, 1> BendingDissipation::stencilGradient(int s, const Eigen::VectorXd& x) const {
-  return ((m_factor * m_hinges[s].stiffness) * angleChange(s, x)) * m_gradients[s];
+  return stencilGradient(s, gatherHinge(m_hinges[s], x), m_hinges[s].stiffness);
+}
+
+Eigen::Matrix<double, 12, 1> BendingDissipation::stencilGradient(int s, const HingeCoords& q, double stiffness) const {
+  return ((m_factor * stiffness) * angleChange(s, q)) * m_gradients[s];
 }
 
 void BendingDissipation::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
@@ -166,10 +169,10 @@ void BendingDissipation::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& 
   });
 }
 
-Eigen::Matrix<double, 12, 12> BendingDissipation::stencilDerivatives(int s, const Eigen::VectorXd& x,
+Eigen::Matrix<double, 12, 12> BendingDissipation::stencilDerivatives(int s, const HingeCoords& q, double stiffness,
                                                                      Eigen::Matrix<double, 12, 1>* ge) const {
-  if (ge) *ge = stencilGradient(s, x);
-  return (m_factor * m_hinges[s].stiffness) * (m_gradients[s] * m_gradients[s].transpose());
+  if (ge) *ge = stencilGradient(s, q, stiffness);
+  return (m_factor * stiffness) * (m_gradients[s] * m_gradients[s].transpose());
 }
 
 void BendingDissipation::addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const { assemble(x, nullptr, h); }
@@ -185,7 +188,9 @@ void BendingDissipation::assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, 
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
     Eigen::Matrix<double, 12, 1> ge;
     for (int i = 0; i < count; ++i) {
-      m_stencils.addHessian(ids[i], stencilDerivatives(ids[i], x, g ? &ge : nullptr), h, cached);
+      const Hinge& hinge = m_hinges[ids[i]];
+      m_stencils.addHessian(
+          ids[i], stencilDerivatives(ids[i], gatherHinge(hinge, x), hinge.stiffness, g ? &ge : nullptr), h, cached);
       if (g) m_stencils.addGradient(ids[i], ge, *g);
     }
   });

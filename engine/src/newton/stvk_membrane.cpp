@@ -109,7 +109,7 @@ void StvkMembrane::gradientPass(const Eigen::VectorXd& x, Eigen::VectorXd& g, bo
       const Eigen::Vector3d b = sigma(1) * f.col(1) + 0.5 * sigma(2) * f.col(0);
       for (int k = 0; k < 3; ++k) ge.segment<3>(3 * k) = e.c[k](0) * a + e.c[k](1) * b;
       if (record) m_stencils.addGradient(ids[i], ge, m_recorded.gradient);
-      if (fold) ge += fold->stencilGradient(ids[i], f);
+      if (fold) ge += fold->stencilGradient(ids[i], e, f);
       m_stencils.addGradient(ids[i], ge, g);
     }
   });
@@ -160,8 +160,9 @@ void StvkMembrane::addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const {
   if (cached) m_stencils.prepare(h);
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
     for (int i = 0; i < count; ++i) {
-      Eigen::Matrix<double, 9, 9> he = elementHessian(m_elements[ids[i]], x);
-      if (fold) he += fold->stencilHessian(ids[i]);
+      const MembraneElement& e = m_elements[ids[i]];
+      Eigen::Matrix<double, 9, 9> he = elementHessian(e, x);
+      if (fold) he += fold->stencilHessian(ids[i], e);
       m_stencils.addHessian(ids[i], he, h, cached);
     }
   });
@@ -178,7 +179,7 @@ void StvkMembrane::addGradientAndHessian(const Eigen::VectorXd& x, Eigen::Vector
       const Eigen::Matrix<double, 3, 2> f = deformationGradient(e, x);
       Eigen::Matrix<double, 9, 9> he = elementDerivatives(e, f, &ge);
       if (fold) {
-        he += fold->stencilDerivatives(ids[i], f, &gd);
+        he += fold->stencilDerivatives(ids[i], e, f, &gd);
         ge += gd;
       }
       m_stencils.addHessian(ids[i], he, h, cached);

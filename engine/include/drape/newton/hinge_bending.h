@@ -34,6 +34,10 @@ struct Hinge {
 // of cloth in a drape, so the bending measure is the dihedral angle in every sound state.
 inline constexpr double kHingeCollapseRatio = 0.2;
 
+// The 12 stacked coordinates (x0, x1, x2, x3) of a hinge.
+using HingeCoords = Eigen::Matrix<double, 12, 1>;
+HingeCoords gatherHinge(const Hinge& hinge, const Eigen::VectorXd& x);
+
 // Interior edges shared by exactly two triangles of the model, with their stiffness (0-stiffness ones dropped).
 std::vector<Hinge> buildHinges(const ClothModel& model);
 
@@ -52,6 +56,8 @@ Eigen::Matrix<double, 12, 12> hingeAngleHessian(const Hinge& hinge, const Eigen:
 // closedForm as hingeAngleGradient. Finite for every x, 0 with a zero-area wing.
 Eigen::Matrix<double, 12, 1> hingeBendGradient(const Hinge& hinge, const Eigen::VectorXd& x, bool closedForm,
                                                double& phi);
+// The same from the hinge's gathered coordinates q (gatherHinge).
+Eigen::Matrix<double, 12, 1> hingeBendGradient(const Hinge& hinge, const HingeCoords& q, bool closedForm, double& phi);
 double hingeBendMeasure(const Hinge& hinge, const Eigen::VectorXd& x);
 // Exact Hessian of phi (12 x 12), by automatic differentiation (exact-Hessian mode and tests).
 Eigen::Matrix<double, 12, 12> hingeBendHessian(const Hinge& hinge, const Eigen::VectorXd& x);
@@ -59,6 +65,8 @@ Eigen::Matrix<double, 12, 12> hingeBendHessian(const Hinge& hinge, const Eigen::
 // (translation invariance), and returns sum_k>0 g_k . (x_k - x_0): then g . (y - x) is the same sum at y minus
 // this one, with no x kept (the bending dissipation's linearised angle change).
 double zeroSumOffset(const Hinge& hinge, const Eigen::VectorXd& x, Eigen::Matrix<double, 12, 1>& g);
+// The same from the hinge's gathered coordinates q at x.
+double zeroSumOffset(const HingeCoords& q, Eigen::Matrix<double, 12, 1>& g);
 
 class BendingDissipation;
 

@@ -41,13 +41,15 @@ class MembraneDissipation : public LaggedDissipation {
   void addCouplings(std::vector<std::pair<int, int>>& pairs) const override { m_stencils.addCouplings(pairs); }
 
   // Element Hessian of triangle s for this step (constant within it) and, when ge is given, the element gradient
-  // at the triangle's deformation gradient f (beginStep first).
-  Eigen::Matrix<double, 9, 9> stencilDerivatives(int s, const Eigen::Matrix<double, 3, 2>& f,
+  // at the triangle's deformation gradient f (beginStep first). e: the membrane's element of triangle s (the same
+  // rest data as this energy's; a folding membrane passes the copy it has at hand, saving a second read).
+  Eigen::Matrix<double, 9, 9> stencilDerivatives(int s, const MembraneElement& e, const Eigen::Matrix<double, 3, 2>& f,
                                                  Eigen::Matrix<double, 9, 1>* ge) const;
-  Eigen::Matrix<double, 9, 9> stencilHessian(int s) const;
-  // Element gradient of triangle s at x, or at its deformation gradient f (beginStep first).
+  Eigen::Matrix<double, 9, 9> stencilHessian(int s, const MembraneElement& e) const;
+  // Element gradient of triangle s at x, or at its deformation gradient f (beginStep first; e as above).
   Eigen::Matrix<double, 9, 1> stencilGradient(int s, const Eigen::VectorXd& x) const;
-  Eigen::Matrix<double, 9, 1> stencilGradient(int s, const Eigen::Matrix<double, 3, 2>& f) const;
+  Eigen::Matrix<double, 9, 1> stencilGradient(int s, const MembraneElement& e,
+                                              const Eigen::Matrix<double, 3, 2>& f) const;
   // Set by the solver when the membrane on the same triangles folds this energy into its passes
   // (AssemblyOptions::foldDissipation): addGradient, addHessian and addGradientAndHessian then add nothing.
   void setFolded(bool folded) { m_folded = folded; }
@@ -61,8 +63,12 @@ class MembraneDissipation : public LaggedDissipation {
   void assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockMatrix& h) const;
   // Strain rate times h, J d, of triangle s at deformation gradient f.
   Eigen::Vector3d strainChange(int s, const Eigen::Matrix<double, 3, 2>& f) const;
-  // Diagonal of W for triangle s.
-  Eigen::Vector3d weights(int s) const { return m_factor * m_stiffness[s]; }
+  // Diagonal of W for element e.
+  Eigen::Vector3d weights(const MembraneElement& e) const { return m_factor * voigtStiffness(e); }
+  // A (kWarp, kWeft, 2 kShear) of element e, N m.
+  static Eigen::Vector3d voigtStiffness(const MembraneElement& e) {
+    return e.area * Eigen::Vector3d(e.kWarp, e.kWeft, 2.0 * e.kShear);
+  }
 
   std::vector<MembraneElement> m_elements;
   bool m_folded = false;
@@ -70,7 +76,6 @@ class MembraneDissipation : public LaggedDissipation {
   StencilSet<3> m_stencils;
   const StvkMembrane* m_source = nullptr;
   std::vector<Eigen::Matrix<double, 3, 2>> m_startF;  // F_n per triangle, at x_n
-  std::vector<Eigen::Vector3d> m_stiffness;           // A (kWarp, kWeft, 2 kShear) per triangle, N m
   double m_factor = 0.0;                              // W / that = beta / h (times the stiffness ramp)
 };
 
@@ -91,11 +96,14 @@ class BendingDissipation : public LaggedDissipation {
   void addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const override;
   void addCouplings(std::vector<std::pair<int, int>>& pairs) const override { m_stencils.addCouplings(pairs); }
 
-  // Element Hessian of hinge s for this step and, when ge is given, the element gradient at x (beginStep first).
-  Eigen::Matrix<double, 12, 12> stencilDerivatives(int s, const Eigen::VectorXd& x,
+  // Element Hessian of hinge s for this step and, when ge is given, the element gradient at the hinge's gathered
+  // coordinates q (gatherHinge; beginStep first). stiffness: k_e of hinge s (a folding bending passes the copy it
+  // has at hand, the same number as this energy's).
+  Eigen::Matrix<double, 12, 12> stencilDerivatives(int s, const HingeCoords& q, double stiffness,
                                                    Eigen::Matrix<double, 12, 1>* ge) const;
-  // Element gradient of hinge s at x (beginStep first).
+  // Element gradient of hinge s at x, or at its gathered coordinates q (beginStep first; stiffness as above).
   Eigen::Matrix<double, 12, 1> stencilGradient(int s, const Eigen::VectorXd& x) const;
+  Eigen::Matrix<double, 12, 1> stencilGradient(int s, const HingeCoords& q, double stiffness) const;
   // As MembraneDissipation::setFolded, for the hinge bending on the same hinges.
   void setFolded(bool folded) { m_folded = folded; }
   // The hinge bending on the same hinges, whose recorded gradients beginStep reuses (nullptr: always computed).
@@ -104,8 +112,8 @@ class BendingDissipation : public LaggedDissipation {
  private:
   bool folded() const { return m_folded && m_options.foldDissipation; }
   void assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockMatrix& h) const;  // as MembraneDissipation's
-  // g . (x - x_n) of hinge s (radians).
-  double angleChange(int s, const Eigen::VectorXd& x) const;
+  // g . (x - x_n) of hinge s (radians), from its gathered coordinates q at x.
+  double angleChange(int s, const HingeCoords& q) const;
 
   std::vector<Hinge> m_hinges;
   bool m_folded = false;
