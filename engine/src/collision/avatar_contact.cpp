@@ -38,14 +38,35 @@ AvatarContactEnergy::AvatarContactEnergy(std::shared_ptr<const AvatarCollider> c
 
 void AvatarContactEnergy::beginStep(const newton::StepContext& ctx) {
   std::lock_guard lock(m_mutex);
-  m_startPositions = *ctx.previousPositions;
-  m_startDistance.assign(m_vertexCount, 0.0);
+  const Eigen::VectorXd& xn = *ctx.previousPositions;
+  const bool propagate = m_startPositions.size() == xn.size() && static_cast<int>(m_startKind.size()) == m_vertexCount;
+  m_startDistance.resize(m_vertexCount, 0.0);
+  m_startKind.resize(m_vertexCount, StartKind::Far);
+  m_hint.resize(m_vertexCount, -1);
   const double radius = m_params.searchRadius;
+  const double keep = m_params.thickness + kLowerBoundMargin;
+  tbb::enumerable_thread_specific<int> queries(0);
   tbb::parallel_for(0, m_vertexCount, [&](int v) {
+    const Eigen::Vector3d p = xn.segment<3>(3 * v);
+    if (propagate && m_startKind[v] != StartKind::Far) {
+      // 1-Lipschitz: the distance at p is at least the last start's (exact or itself a bound) minus the motion.
+      const double lower = m_startDistance[v] - (p - m_startPositions.segment<3>(3 * v)).norm();
+      if (lower > keep) {
+        m_startDistance[v] = lower;
+        m_startKind[v] = StartKind::Lower;
+        return;
+      }
+    }
     // Nothing within the radius: treat as outside by the radius (deeper vertices are ignored, see header).
+    ++queries.local();
     SurfacePoint s;
-    m_startDistance[v] = m_collider->closest(m_startPositions.segment<3>(3 * v), s, radius) ? s.signedDistance : radius;
+    const bool found = m_collider->closest(p, s, radius, m_hint[v]);
+    m_startDistance[v] = found ? s.signedDistance : radius;
+    m_startKind[v] = found ? StartKind::Exact : StartKind::Far;
+    if (found) m_hint[v] = s.triangle;
   });
+  m_startPositions = xn;
+  m_lastStartQueries = queries.combine(std::plus<int>());
   m_cachedX.resize(0);
 }
 
@@ -64,12 +85,17 @@ void AvatarContactEnergy::update(const Eigen::VectorXd& x) const {
       if (haveStart) {
         const double moved = (p - m_startPositions.segment<3>(3 * v)).norm();
         if (m_startDistance[v] - th > moved) continue;  // 1-Lipschitz: d(p) >= d0 - moved > thickness
-        // Strict upper bound on the unsigned distance (1-Lipschitz), capped by the search radius.
-        bound = std::min(bound, (std::abs(m_startDistance[v]) + moved) * (1.0 + 1e-9) + 1e-12);
+        // Strict upper bound on the unsigned distance (1-Lipschitz), capped by the search radius; a start distance
+        // that is only a lower bound gives none.
+        if (m_startKind[v] == StartKind::Exact)
+          bound = std::min(bound, (std::abs(m_startDistance[v]) + moved) * (1.0 + 1e-9) + 1e-12);
       }
       ++queries.local();
       SurfacePoint s;
-      if (!m_collider->closest(p, s, bound) || !(s.signedDistance < th)) continue;
+      const bool hinted = v < static_cast<int>(m_hint.size());  // after the first beginStep
+      if (!m_collider->closest(p, s, bound, hinted ? m_hint[v] : -1)) continue;
+      if (hinted) m_hint[v] = s.triangle;  // one task per vertex: no race
+      if (!(s.signedDistance < th)) continue;
       Active a;
       a.stencil.vertices[0] = v;
       a.stencil.weights[0] = 1.0;

@@ -10,9 +10,13 @@
 // The contact set is recomputed from x on every evaluation, so E is one fixed function of x and the line search
 // compares like with like. This stays cheap because the signed distance is 1-Lipschitz: beginStep stores each
 // vertex's signed distance d0 at the step start, and a vertex that moved by less than d0 - thickness since then
-// provably has no contact and is skipped without a query. Queries are bounded by searchRadius: the energy is
+// provably has no contact and is skipped without a query. beginStep itself queries only vertices that may be
+// near the body: a vertex found outside at the last step start carries the lower bound d0 - (its motion since)
+// instead, as long as that bound keeps it clear of the contact band by a margin. Queries are bounded by searchRadius: the energy is
 // that of vertices with -searchRadius < d < thickness. Results for the last x are cached so that value,
-// gradient and Hessian at the same x share one set of queries.
+// gradient and Hessian at the same x share one set of queries. Every query is hinted with the avatar triangle the
+// vertex's last query found (AvatarCollider::closest): a vertex near the body moves little between evaluations, so
+// most queries search that triangle's neighbourhood instead of walking the tree.
 #include <Eigen/Core>
 #include <memory>
 #include <mutex>
@@ -66,6 +70,8 @@ class AvatarContactEnergy : public newton::Energy {
   const std::vector<ContactStencil>& contacts(const Eigen::VectorXd& x) const;
   // Vertices whose contact query could not be skipped in the last evaluation (for statistics).
   int lastQueryCount() const { return m_lastQueries; }
+  // Vertices the last beginStep queried (the others kept a lower bound; for statistics and tests).
+  int lastStartQueryCount() const { return m_lastStartQueries; }
   const ContactParameters& parameters() const { return m_params; }
   const AvatarCollider& collider() const { return *m_collider; }
 
@@ -81,13 +87,22 @@ class AvatarContactEnergy : public newton::Energy {
   int m_vertexCount = 0;
   ContactParameters m_params;
   AvatarPenalty m_penalty;
+  // What m_startDistance holds for a vertex: its signed distance (Exact), a lower bound on it (Lower), or the
+  // search radius because nothing was found within it (Far: far outside, or deeper inside than the radius).
+  enum class StartKind : char { Far, Exact, Lower };
+  // beginStep keeps a lower bound instead of querying while it exceeds thickness + this margin (metres): the
+  // vertex then needs no query in the step unless it moves by more than the margin within it.
+  static constexpr double kLowerBoundMargin = 5e-3;
   Eigen::VectorXd m_startPositions;     // x at the last beginStep (empty before the first)
-  std::vector<double> m_startDistance;  // signed distance at m_startPositions per vertex
+  std::vector<double> m_startDistance;  // signed distance at m_startPositions per vertex (see m_startKind)
+  std::vector<StartKind> m_startKind;
+  mutable std::vector<int> m_hint;      // per vertex: the avatar triangle its last query found (-1: none)
   mutable std::mutex m_mutex;
   mutable Eigen::VectorXd m_cachedX;
   mutable std::vector<Active> m_active;
   mutable std::vector<ContactStencil> m_stencils;
   mutable int m_lastQueries = 0;
+  int m_lastStartQueries = 0;
 };
 
 }  // namespace drape::collision
