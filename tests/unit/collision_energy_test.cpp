@@ -133,15 +133,15 @@ TEST(CollisionEnergyTest, AvatarContactStartBoundsFollowTheMotion) {
     ctx.previousPositions = &xn;
     stepped.beginStep(ctx);
     if (step > 0) fewestStartQueries = std::min(fewestStartQueries, stepped.lastStartQueryCount());
-    const VectorXd x = positionsAt(step + 1);  // the step's end, 3 mm further in
+    const VectorXd x = positionsAt(step + 1);        // the step's end, 3 mm further in
     AvatarContactEnergy fresh(collider, n, params);  // no beginStep: queries every vertex
     ASSERT_EQ(stepped.contacts(x).size(), fresh.contacts(x).size()) << "step " << step;
     EXPECT_NEAR(stepped.value(x), fresh.value(x), 1e-12 * (1.0 + fresh.value(x))) << "step " << step;
     EXPECT_LE((gradientOf(stepped, x) - gradientOf(fresh, x)).norm(), 1e-12 * (1.0 + gradientOf(fresh, x).norm()));
     mostContacts = std::max(mostContacts, static_cast<int>(fresh.contacts(x).size()));
   }
-  EXPECT_GT(mostContacts, n / 2);          // the drift brought most vertices into contact
-  EXPECT_LT(fewestStartQueries, n / 2);    // and the start queries were skipped for many of them on the way
+  EXPECT_GT(mostContacts, n / 2);        // the drift brought most vertices into contact
+  EXPECT_LT(fewestStartQueries, n / 2);  // and the start queries were skipped for many of them on the way
 }
 
 // Two triangles face to face a few millimetres apart plus a crossing edge: vertex-triangle and edge-edge pairs.

@@ -12,11 +12,11 @@
 // vertex's signed distance d0 at the step start, and a vertex that moved by less than d0 - thickness since then
 // provably has no contact and is skipped without a query. beginStep itself queries only vertices that may be
 // near the body: a vertex found outside at the last step start carries the lower bound d0 - (its motion since)
-// instead, as long as that bound keeps it clear of the contact band by a margin. Queries are bounded by searchRadius: the energy is
-// that of vertices with -searchRadius < d < thickness. Results for the last x are cached so that value,
-// gradient and Hessian at the same x share one set of queries. Every query is hinted with the avatar triangle the
-// vertex's last query found (AvatarCollider::closest): a vertex near the body moves little between evaluations, so
-// most queries search that triangle's neighbourhood instead of walking the tree.
+// instead, as long as that bound keeps it clear of the contact band by a margin. Queries are bounded by
+// searchRadius: the energy is that of vertices with -searchRadius < d < thickness. Results for the last x are
+// cached so that value, gradient and Hessian at the same x share one set of queries. Every query is hinted with the
+// avatar triangle the vertex's last query found (AvatarCollider::closest): a vertex near the body moves little between
+// evaluations, so most queries search that triangle's neighbourhood instead of walking the tree.
 #include <Eigen/Core>
 #include <memory>
 #include <mutex>
@@ -96,7 +96,7 @@ class AvatarContactEnergy : public newton::Energy {
   Eigen::VectorXd m_startPositions;     // x at the last beginStep (empty before the first)
   std::vector<double> m_startDistance;  // signed distance at m_startPositions per vertex (see m_startKind)
   std::vector<StartKind> m_startKind;
-  mutable std::vector<int> m_hint;      // per vertex: the avatar triangle its last query found (-1: none)
+  mutable std::vector<int> m_hint;  // per vertex: the avatar triangle its last query found (-1: none)
   mutable std::mutex m_mutex;
   mutable Eigen::VectorXd m_cachedX;
   mutable std::vector<Active> m_active;
