@@ -34,15 +34,18 @@ double AvatarPenalty::stiffnessAt(double distance) const {
 
 AvatarContactEnergy::AvatarContactEnergy(std::shared_ptr<const AvatarCollider> collider, int vertexCount,
                                          ContactParameters params)
-    : m_collider(std::move(collider)), m_vertexCount(vertexCount), m_params(params), m_penalty(params) {}
+    : m_collider(std::move(collider)),
+      m_vertexCount(vertexCount),
+      m_params(params),
+      m_penalty(params),
+      m_startDistance(vertexCount, 0.0),
+      m_startKind(vertexCount, StartKind::Far),
+      m_hint(vertexCount, -1) {}
 
 void AvatarContactEnergy::beginStep(const newton::StepContext& ctx) {
   std::lock_guard lock(m_mutex);
   const Eigen::VectorXd& xn = *ctx.previousPositions;
-  const bool propagate = m_startPositions.size() == xn.size() && static_cast<int>(m_startKind.size()) == m_vertexCount;
-  m_startDistance.resize(m_vertexCount, 0.0);
-  m_startKind.resize(m_vertexCount, StartKind::Far);
-  m_hint.resize(m_vertexCount, -1);
+  const bool propagate = m_startPositions.size() == xn.size();  // there was a last start
   const double radius = m_params.searchRadius;
   const double keep = m_params.thickness + kLowerBoundMargin;
   tbb::enumerable_thread_specific<int> queries(0);
@@ -92,9 +95,8 @@ void AvatarContactEnergy::update(const Eigen::VectorXd& x) const {
       }
       ++queries.local();
       SurfacePoint s;
-      const bool hinted = v < static_cast<int>(m_hint.size());  // after the first beginStep
-      if (!m_collider->closest(p, s, bound, hinted ? m_hint[v] : -1)) continue;
-      if (hinted) m_hint[v] = s.triangle;  // one task per vertex: no race
+      if (!m_collider->closest(p, s, bound, m_hint[v])) continue;
+      m_hint[v] = s.triangle;  // one task per vertex: no race
       if (!(s.signedDistance < th)) continue;
       Active a;
       a.stencil.vertices[0] = v;
