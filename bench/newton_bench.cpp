@@ -9,13 +9,15 @@
 //                      [--repeat R] [--memory]
 // --motion-start moves the start (and end, keeping the rate) of every moving pin to S seconds, so that a short
 // window shows the twist; --repeat R runs the whole list of configurations R times, interleaved, and keeps the
-// fastest run of each (the loaded-machine noise only ever adds time); --memory prints the peak resident memory (VmHWM) per 100k DOFs, run it alone.
+// fastest run of each (the loaded-machine noise only ever adds time); --memory prints the peak resident memory (VmHWM)
+// per 100k DOFs, run it alone.
 // --reuse-steps N: the Hessian reuse limit of feature "reuse" (default 4); --coarse-aggregate N: the vertices per
 // aggregate of feature "coarse" (two-level PCG, default 16). (solver.cg.forcing trades accuracy, so
 // it is no feature here: measure it with --set.)
 // Configurations: a base "on" (every speed-up on) or "off" (all off) followed by "+X" / "-X" modifiers, e.g.
-// "off+bending+map", "on-reorder". X in {bending, map, parallel, fold, reorder, fused, warm, mixed, reuse, coarse}. "all" = off,
-// on and every on-X; "table7" = the cumulative sequence off, off+bending, ... , on (newton-drape-pizana Table 7).
+// "off+bending+map", "on-reorder". X in {bending, map, parallel, fold, reorder, fused, warm, mixed, reuse, coarse,
+// guess, majorizer}. "all" = off, on and every on-X; "table7" = the cumulative sequence off, off+bending, ... , on
+// (newton-drape-pizana Table 7; the features after "coarse" are not in the paper either).
 #include <sys/resource.h>
 
 #include <chrono>
@@ -67,6 +69,9 @@ const std::vector<Feature>& features() {
       {"coarse", "solver.cg.coarse_aggregate",
        [](NewtonSettings& s, bool on) { s.coarseAggregate = on ? g_coarseAggregate : 0; },
        [](bool on) { return std::to_string(on ? g_coarseAggregate : 0); }},
+      {"guess", "solver.newton.relaxation_guess", [](NewtonSettings& s, bool on) { s.relaxationGuess = on; }},
+      // Friction is a contact term: the cloth mode (no contact) has none to switch.
+      {"majorizer", "contact.friction_majorizer", [](NewtonSettings&, bool) {}},
   };
   return list;
 }

@@ -233,6 +233,62 @@ TEST(CollisionEnergyTest, FrictionDerivativesStaticAndSlidingAndPsd) {
   EXPECT_NEAR(frictionF0(1.0, 1.0), 1.0, 1e-15);
 }
 
+// At a step's first iterate friction adds its isotropic majorizer: the quadratic model with it lies above the
+// friction potential everywhere and touches it at x (the half-quadratic bound of friction.h), and it is at least as
+// stiff as the Hessian; the Hessian's own model is no bound while sliding (it has no curvature along the slip).
+TEST(CollisionEnergyTest, FrictionMajorizerBoundsThePotentialAtThePrediction) {
+  const int n = 4;
+  const VectorXd start = VectorXd::LinSpaced(3 * n, 0.0, 0.1);
+  std::vector<FrictionEnergy::LaggedContact> contacts(2);
+  contacts[0].stencil.vertices = {0, 0, 0, 0};
+  contacts[0].stencil.weights = {1, 0, 0, 0};
+  contacts[0].stencil.count = 1;
+  contacts[0].stencil.normal = Eigen::Vector3d(0, 1, 0);
+  contacts[0].normalForce = 2.0;
+  contacts[1].stencil.vertices = {1, 2, 3, 0};
+  contacts[1].stencil.weights = {1.0, -0.3, -0.7, 0.0};
+  contacts[1].stencil.count = 3;
+  contacts[1].stencil.normal = Eigen::Vector3d(2, 1, 2) / 3.0;
+  contacts[1].normalForce = 0.5;
+  for (auto& c : contacts) c.tangent = Eigen::Matrix3d::Identity() - c.stencil.normal * c.stencil.normal.transpose();
+  const double h = 1e-3;  // eps = 1e-6 m
+  FrictionEnergy exact(nullptr, nullptr, FrictionParameters{0.4, 1e-3, false});
+  FrictionEnergy majorized(nullptr, nullptr, FrictionParameters{0.4, 1e-3, true});
+  exact.setLagged(contacts, start, h);
+  majorized.setLagged(contacts, start, h);
+  auto prediction = [&](const FrictionEnergy& e, const VectorXd& x, VectorXd& g) {
+    newton::BlockMatrix m(n, {});
+    g = VectorXd::Zero(x.size());
+    e.addPredictionGradientAndHessian(x, g, m);
+    return Eigen::MatrixXd(m.toSparse());
+  };
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto random = [&](double scale) { return VectorXd(scale * VectorXd::NullaryExpr(3 * n, [&] { return u(rng); })); };
+  for (double slip : {4e-7, 3e-5}) {  // static (below eps) and sliding
+    const VectorXd x = start + random(slip);
+    VectorXd g, gExact;
+    const Eigen::MatrixXd M = prediction(majorized, x, g);
+    const Eigen::MatrixXd H = prediction(exact, x, gExact);  // switched off: the Hessian itself
+    EXPECT_LE((H - denseHessian(exact, x)).norm(), 1e-12 * H.norm());
+    EXPECT_LE((g - gradientOf(exact, x)).norm(), 1e-12 * g.norm()) << "the gradient is the exact one";
+    EXPECT_LE((gExact - g).norm(), 1e-12 * g.norm());
+    EXPECT_GE(minEigenvalue(M - H), -1e-9 * M.norm()) << "at least as stiff as the Hessian, slip " << slip;
+    double worstMajorizer = -1e300, worstHessian = -1e300;  // max of D(z) - model(z), relative to D(x)
+    for (int k = 0; k < 400; ++k) {
+      const VectorXd dz = random(slip * std::pow(10.0, u(rng)));  // steps from 0.1x to 10x the slip
+      const double d = majorized.value(x + dz);
+      worstMajorizer = std::max(worstMajorizer, d - (majorized.value(x) + g.dot(dz) + 0.5 * dz.dot(M * dz)));
+      worstHessian = std::max(worstHessian, d - (majorized.value(x) + g.dot(dz) + 0.5 * dz.dot(H * dz)));
+    }
+    const double scale = majorized.value(x);
+    EXPECT_LE(worstMajorizer, 1e-12 * scale) << "slip " << slip;
+    if (slip > 1e-6) {
+      EXPECT_GT(worstHessian, 1e-3 * scale) << "the Hessian's model is no bound while sliding";
+    }
+  }
+}
+
 TEST(CollisionEnergyTest, FactoryCreatesOnlyNeededTerms) {
   const TwoLayers layers = twoLayers();
   ContactSetup setup;

@@ -228,6 +228,51 @@ TEST(NewtonSolver, RelaxationSettlesPreStretchedCloth) {
   }
 }
 
+// NewtonSettings::relaxationGuess: a relaxation step's Newton iterations start from the last step's velocity
+// instead of from x_n. The step's equations are the same, so the relaxation ends at least as close to a tightly
+// solved one as without the guess, in fewer Newton iterations: two hanging panels whose 10 cm seam gap the ramped
+// stitches close during the 0.1 s window, as a garment's seams close in its relaxation.
+TEST(NewtonSolver, RelaxationGuessNeedsFewerIterationsForTheSameSettling) {
+  const int n = 8;
+  ClothModel m;
+  m.fabrics = {cotton()};
+  appendPanel(m, n, 0.2, Eigen::Vector3d(0, 0, 0));
+  appendPanel(m, n, 0.2, Eigen::Vector3d(0.3, 0, 0));
+  for (int i = 0; i < n; ++i) m.stitches.emplace_back(i * n + n - 1, n * n + i * n);
+  m.pinned = {n * (n - 1), n * n + n * n - 1};
+  auto relax = [&](bool guess, bool tight, int& iterations) {
+    NewtonSettings s;
+    s.relaxationGuess = guess;
+    if (tight) {
+      s.tauNewton = 1e-9;
+      s.linear.tolerance = 1e-10;
+      s.maxNewtonIterations = 20;
+    }
+    NewtonSolver solver(m, s);
+    iterations = 0;
+    while (solver.time() < s.relaxationTime - 1e-12) {
+      const NewtonStepReport r = solver.step();
+      EXPECT_EQ(r.status, NewtonStatus::Converged) << "t = " << r.time;
+      EXPECT_TRUE(r.relaxing);
+      iterations += r.newtonIterations;
+    }
+    return Eigen::VectorXd(solver.positions());
+  };
+  int refIterations = 0, offIterations = 0, onIterations = 0;
+  const Eigen::VectorXd ref = relax(false, true, refIterations);
+  const Eigen::VectorXd off = relax(false, false, offIterations);
+  const Eigen::VectorXd on = relax(true, false, onIterations);
+  const double moved = (ref - m.positions).norm();
+  ASSERT_GT(moved, 0.05);
+  const double offError = (off - ref).norm() / moved, onError = (on - ref).norm() / moved;
+  std::printf(
+      "relaxation: Newton iterations %d without the guess, %d with it (%d tightly solved); distance to the "
+      "tight run / its motion: %.2e without, %.2e with\n",
+      offIterations, onIterations, refIterations, offError, onError);
+  EXPECT_LT(onIterations, 0.95 * offIterations);  // 3.3 -> 1.5 per step on the default scene's relaxation
+  EXPECT_LT(onError, offError);
+}
+
 TEST(NewtonSolver, DivergenceKeepsLastGoodStateAndCancelStops) {
   ClothModel m = hangingCloth(5, 0.2);
   std::vector<std::unique_ptr<Energy>> extra;

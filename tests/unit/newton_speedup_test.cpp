@@ -403,6 +403,7 @@ TEST(NewtonSpeedup, RecordedStepStartGradientsGiveTheSameRelaxation) {
     NewtonSettings s;
     s.hMax = 4e-3;  // relaxation held at 2.5e-4 s: 400 steps; run 60 of them (fresh and reused Hessians)
     s.relaxationHoldStep = true;
+    s.relaxationGuess = false;  // steps starting at x_n, where the record applies (the guess starts elsewhere)
     s.stepStartGradients = config == 1;
     NewtonSolver solver(m, s);
     int reused = 0, recorded = 0;

@@ -35,7 +35,7 @@ std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(const ContactSe
     out.push_back(std::move(e));
   }
   if (setup.frictionCoefficient > 0.0 && (avatar || self)) {
-    const FrictionParameters friction{setup.frictionCoefficient, setup.frictionEpsV};
+    const FrictionParameters friction{setup.frictionCoefficient, setup.frictionEpsV, setup.frictionMajorizer};
     out.push_back(std::make_unique<FrictionEnergy>(avatar, self, friction, featureContact));
   }
   return out;

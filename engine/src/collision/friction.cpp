@@ -70,11 +70,23 @@ void FrictionEnergy::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) c
 }
 
 void FrictionEnergy::addHessian(const Eigen::VectorXd& x, newton::BlockMatrix& h) const {
+  addBlocks(x, h, false);
+}
+
+void FrictionEnergy::addPredictionGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g,
+                                                     newton::BlockMatrix& h) const {
+  addGradient(x, g);
+  addBlocks(x, h, m_params.majorizeAtPrediction);
+}
+
+void FrictionEnergy::addBlocks(const Eigen::VectorXd& x, newton::BlockMatrix& h, bool majorizer) const {
   for (const LaggedContact& c : m_contacts) {
     const Eigen::Vector3d u = slip(c, x);
     const double y = u.norm();
     Eigen::Matrix3d inner;
-    if (y >= m_eps) {
+    if (majorizer) {
+      inner = (y >= m_eps ? 1.0 / y : (2.0 - y / m_eps) / m_eps) * Eigen::Matrix3d::Identity();  // f1(y) / y
+    } else if (y >= m_eps) {
       inner = (Eigen::Matrix3d::Identity() - u * u.transpose() / (y * y)) / y;  // f1 = 1, f1' = 0
     } else {
       // f1/y = (2 - y/eps)/eps and (f1' y - f1)/y^3 = -1 / (eps^2 y); the product with u u^T is bounded.

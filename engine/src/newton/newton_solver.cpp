@@ -194,7 +194,8 @@ bool NewtonSolver::assembleFirstIteration(const Eigen::VectorXd& x, double h, bo
     }
     saveElasticHessian(h);
   }
-  for (size_t k = m_elasticCount; k < m_energies.size(); ++k) m_energies[k]->addGradientAndHessian(x, g, m_matrix);
+  for (size_t k = m_elasticCount; k < m_energies.size(); ++k)
+    m_energies[k]->addPredictionGradientAndHessian(x, g, m_matrix);
   return reuse;
 }
 
@@ -223,14 +224,16 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
                                    NewtonStepReport& report) {
   StepContext ctx{&m_x, &m_v, h, m_time, scale, assemblyOptions()};
   for (auto& e : m_energies) e->beginStep(ctx);
-  v = m_v;
+  // A relaxation step (zero v_n) may start from the last step's motion (NewtonSettings::relaxationGuess).
+  const bool guess = m_settings.relaxationGuess && report.relaxing && m_lastDv.size() == m_v.size() && m_lastDvH > 0.0;
+  v = guess ? Eigen::VectorXd((h / m_lastDvH) * m_lastDv) : m_v;
   x = m_x + h * v;
   Eigen::VectorXd b, dv, vls, xls, bls;
   const double invH2 = 1.0 / (h * h);
   // The first iteration needs the gradient and the Hessian at the same x: one pass over the stencils.
   auto t0 = Clock::now();
   Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
-  const bool atStepStart = m_settings.stepStartGradients && m_v.isZero(0.0);
+  const bool atStepStart = !guess && m_settings.stepStartGradients && m_v.isZero(0.0);
   report.hessianReused = assembleFirstIteration(x, h, atStepStart, g, report.recordedGradients);
   momentumResidual(g, v, h, b);
   report.hessianSeconds += secondsSince(t0);
@@ -261,8 +264,9 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
     report.hessianSeconds += secondsSince(t0);
     t0 = Clock::now();
     // PCG initial guess (used when linear.warmStart): the first Newton system of a step is close to the last
-    // step's velocity change (scaled to this h); later iterations solve for corrections and start from 0.
-    if (it == 0 && m_lastDv.size() == v.size() && m_lastDvH > 0.0)
+    // step's velocity change (scaled to this h); later iterations solve for corrections and start from 0, and so
+    // does a relaxation step whose first iterate already is that change.
+    if (it == 0 && !guess && m_lastDv.size() == v.size() && m_lastDvH > 0.0)
       dv = (h / m_lastDvH) * m_lastDv;
     else
       dv.resize(0);
@@ -328,9 +332,10 @@ NewtonStepReport NewtonSolver::step() {
   m_h = std::min(m_h, hCap);
   const double scale =
       relaxing ? s.relaxationStartScale + (1.0 - s.relaxationStartScale) * (m_time / s.relaxationTime) : 1.0;
-  // A relaxation step ends with zero velocities, so the next one starts where this one's last gradient pass ran.
+  // A relaxation step ends with zero velocities, so the next one starts where this one's last gradient pass ran
+  // (unless the relaxation guess starts it elsewhere).
   for (size_t k = 0; k < m_elasticCount; ++k)
-    m_energies[k]->setRecordStepStartGradient(relaxing && s.stepStartGradients);
+    m_energies[k]->setRecordStepStartGradient(relaxing && s.stepStartGradients && !s.relaxationGuess);
   m_nearRest = s.restAwareConvergence && !relaxing &&
                kineticEnergyPercentile() < s.restAwareFactor * s.earlyStopThreshold;
   Eigen::VectorXd x, v;

@@ -70,6 +70,7 @@ newton::NewtonSettings newtonSettingsFrom(const Settings& s) {
   n.growAfterSteps = s.integer("solver.newton.grow_after_steps");
   n.relaxation = s.flag("solver.newton.relaxation");
   n.relaxationHoldStep = s.text("solver.newton.relaxation_step") == "hold";
+  n.relaxationGuess = s.flag("solver.newton.relaxation_guess");
   n.earlyStopThreshold = s.number("solver.newton.early_stop_threshold");
   n.earlyStopWindow = s.number("solver.newton.early_stop_window");
   n.restAwareConvergence = s.flag("solver.newton.rest_aware_convergence");

@@ -32,6 +32,7 @@ ContactTerms makeContactTerms(const Scene& scene, const Garment& garment,
     double mu = scene.fabric.friction;
     for (const auto& [panel, fabric] : scene.panelFabrics) mu = std::max(mu, fabric.friction);
     setup.frictionCoefficient = mu;
+    setup.frictionMajorizer = scene.settings.flag("contact.friction_majorizer");
   }
   // Non-conforming seams: their edge stitches are excluded from cloth-cloth contact like the vertex pairs.
   std::vector<newton::EdgeStitch> edgeStitches;

@@ -28,6 +28,7 @@ struct ContactSetup {
   double selfMargin = 0.0;           // extra BVH search radius beyond the thickness, metres (0: = thickness)
   double frictionCoefficient = 0.0;  // mu; 0 creates no friction energy
   double frictionEpsV = 1e-3;        // m/s, see FrictionParameters
+  bool frictionMajorizer = true;     // see FrictionParameters::majorizeAtPrediction
 };
 
 // Garment: vertexCount vertices, triangles |F| x 3, stitched vertex pairs and edge stitches (non-conforming

@@ -7,6 +7,14 @@
 // eps = epsV * h: static friction below a slip of epsV * h, kinetic (force mu lambda) above. D is C1 and its
 // Hessian sum_c mu lambda_c w_i w_j [f1(y)/y I + (f1'(y) y - f1(y))/y^3 u u^T] restricted to the tangent plane
 // is positive semi-definite for every y (no projection needed).
+// Along u that Hessian is mu lambda f1'(y), zero in the sliding regime. At a step's first Newton iterate the slip is
+// predicted from the vertex's velocity (u = h v_n); where the contact should stick, the linear model then sees a
+// constant force and the step overshoots, turning the slip round, and the residual error 2 mu lambda h is far
+// below tau_n: the next step overshoots back, and the contact chatters every step without ever sticking (0.04 m/s
+// on the default scene; the PCG warm start then fails, docs/BENCHMARKS.md). There (addPredictionGradientAndHessian)
+// the energy adds the isotropic majorizer mu lambda f1(y)/y (I - n n^T) instead: f0 is concave in y^2, so the
+// quadratic with this curvature lies above D and touches it at u (the half-quadratic bound): its step shrinks a
+// slip towards the sticking point but cannot pass it. Later iterations take the Hessian.
 #include <Eigen/Core>
 #include <vector>
 
@@ -21,6 +29,7 @@ namespace drape::collision {
 struct FrictionParameters {
   double mu = 0.3;       // Coulomb coefficient (> 0; a coefficient of 0 creates no friction energy at all)
   double epsV = 1e-3;    // slip velocity below which friction acts as a stiff static spring, m/s
+  bool majorizeAtPrediction = true;  // the majorizer at a step's first iterate (contact.friction_majorizer)
 };
 
 // Smoothed friction magnitude profile f1 and its primitive f0 (f0(0) = eps / 3, f0(y) = y for y >= eps).
@@ -38,6 +47,9 @@ class FrictionEnergy : public newton::Energy {
   double value(const Eigen::VectorXd& x) const override;
   void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
   void addHessian(const Eigen::VectorXd& x, newton::BlockMatrix& h) const override;
+  // The gradient and, with majorizeAtPrediction, the isotropic majorizer (above) instead of the Hessian.
+  void addPredictionGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g,
+                                       newton::BlockMatrix& h) const override;
 
   // Lagged contacts of the current step and their normal forces (N).
   struct LaggedContact {
@@ -51,6 +63,7 @@ class FrictionEnergy : public newton::Energy {
 
  private:
   Eigen::Vector3d slip(const LaggedContact& c, const Eigen::VectorXd& x) const;
+  void addBlocks(const Eigen::VectorXd& x, newton::BlockMatrix& h, bool majorizer) const;
 
   const AvatarContactEnergy* m_avatar = nullptr;
   const SelfContactEnergy* m_self = nullptr;

@@ -69,6 +69,14 @@ class Energy {
     addGradient(x, g);
     addHessian(x, h);
   }
+  // The step's first Newton iterate is a prediction: x = x_n + h v_n, every vertex keeping its velocity (in the
+  // relaxation, whose v_n is zero, NewtonSettings::relaxationGuess predicts the last step's velocity). There the
+  // solver calls this instead. An energy may add there a symmetric positive semi-definite majorizer of its Hessian
+  // (a matrix at least as stiff in every direction) where the exact Hessian lets the first Newton step overshoot a
+  // solution that the loose tau_n then accepts: lagged friction does (friction.h). Default: addGradientAndHessian.
+  virtual void addPredictionGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const {
+    addGradientAndHessian(x, g, h);
+  }
 
   // Relaxation steps start at x = x_n with zero velocities, where the lagged dissipations folded into an energy's
   // passes vanish. There the solver may take the energy's gradient from its last gradient pass

@@ -37,6 +37,10 @@ struct NewtonSettings {
   // h grows back by the usual rule (I_s good steps, 1 / omega), the paper's "initial time step" (5.2).
   bool relaxationHoldStep = false;
   double relaxationStartScale = 1e-2;   // stiffness ramp start
+  // Not in the paper: a relaxation step (v_n = 0) starts its Newton iterations from the last step's velocity, scaled
+  // to h, instead of from x_n: the stitches and the ramp move the garment steadily, so the last motion predicts this
+  // one. Only the first iterate changes, not the step's equations (its velocities are still zeroed after it).
+  bool relaxationGuess = true;
   double earlyStopThreshold = 1e-8;     // J, 99th percentile of 0.5 m |v|^2
   double earlyStopWindow = 0.1;         // s
   double kineticPercentile = 0.99;
