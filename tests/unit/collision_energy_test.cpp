@@ -200,9 +200,9 @@ TEST(CollisionEnergyTest, SelfContactCandidatesFollowLargeMoves) {
   EXPECT_DOUBLE_EQ(lagged.value(layers.x), fresh.value(layers.x));
 }
 
-TEST(CollisionEnergyTest, FrictionDerivativesStaticAndSlidingAndPsd) {
-  const int n = 5;
-  VectorXd start = VectorXd::LinSpaced(3 * n, 0.0, 0.1);
+// Lagged friction contacts on 5 vertices: vertex 0 against a floor, and vertex 1 against the edges' point of
+// vertices 2-4 (an edge-edge-like stencil) with a slanted normal.
+std::vector<FrictionEnergy::LaggedContact> frictionContacts() {
   std::vector<FrictionEnergy::LaggedContact> contacts(2);
   contacts[0].stencil.vertices = {0, 0, 0, 0};
   contacts[0].stencil.weights = {1, 0, 0, 0};
@@ -215,6 +215,13 @@ TEST(CollisionEnergyTest, FrictionDerivativesStaticAndSlidingAndPsd) {
   contacts[1].stencil.normal = Eigen::Vector3d(1, 2, 2) / 3.0;
   contacts[1].normalForce = 0.7;
   for (auto& c : contacts) c.tangent = Eigen::Matrix3d::Identity() - c.stencil.normal * c.stencil.normal.transpose();
+  return contacts;
+}
+
+TEST(CollisionEnergyTest, FrictionDerivativesStaticAndSlidingAndPsd) {
+  const int n = 5;
+  VectorXd start = VectorXd::LinSpaced(3 * n, 0.0, 0.1);
+  const std::vector<FrictionEnergy::LaggedContact> contacts = frictionContacts();
   const double h = 1e-3;
   FrictionEnergy friction(nullptr, nullptr, FrictionParameters{0.4, 1e-3});
   friction.setLagged(contacts, start, h);  // eps = 1e-6 m
@@ -237,20 +244,9 @@ TEST(CollisionEnergyTest, FrictionDerivativesStaticAndSlidingAndPsd) {
 // friction potential everywhere and touches it at x (the half-quadratic bound of friction.h), and it is at least as
 // stiff as the Hessian; the Hessian's own model is no bound while sliding (it has no curvature along the slip).
 TEST(CollisionEnergyTest, FrictionMajorizerBoundsThePotentialAtThePrediction) {
-  const int n = 4;
+  const int n = 5;
   const VectorXd start = VectorXd::LinSpaced(3 * n, 0.0, 0.1);
-  std::vector<FrictionEnergy::LaggedContact> contacts(2);
-  contacts[0].stencil.vertices = {0, 0, 0, 0};
-  contacts[0].stencil.weights = {1, 0, 0, 0};
-  contacts[0].stencil.count = 1;
-  contacts[0].stencil.normal = Eigen::Vector3d(0, 1, 0);
-  contacts[0].normalForce = 2.0;
-  contacts[1].stencil.vertices = {1, 2, 3, 0};
-  contacts[1].stencil.weights = {1.0, -0.3, -0.7, 0.0};
-  contacts[1].stencil.count = 3;
-  contacts[1].stencil.normal = Eigen::Vector3d(2, 1, 2) / 3.0;
-  contacts[1].normalForce = 0.5;
-  for (auto& c : contacts) c.tangent = Eigen::Matrix3d::Identity() - c.stencil.normal * c.stencil.normal.transpose();
+  const std::vector<FrictionEnergy::LaggedContact> contacts = frictionContacts();
   const double h = 1e-3;  // eps = 1e-6 m
   FrictionEnergy exact(nullptr, nullptr, FrictionParameters{0.4, 1e-3, false});
   FrictionEnergy majorized(nullptr, nullptr, FrictionParameters{0.4, 1e-3, true});
