@@ -1,10 +1,11 @@
 // Avatar collider: signed distance to an icosphere and to a box against the analytic shapes, inside and outside,
 // and the closest point against an all-triangles search; a hinted query answers as the unhinted one, also where it
-// searches only the hint's neighbourhood.
+// searches only the hint's neighbourhood, and a moving point's list of nearby triangles answers as a full query.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -166,6 +167,59 @@ TEST(CollisionAvatarTest, HintedQueryNearTheSurfaceFindsTheClosestOfAllTriangles
     EXPECT_LT((hinted.closest - plain.closest).norm(), 1e-12);
   }
   EXPECT_GT(local, 3000);  // most queries took the neighbourhood search
+}
+
+// Points wandering near a lumpy surface keep their NearbyTriangles from query to query. Every answer, bounded or
+// not, must be the closest point over all triangles (and that of the plain query), whether the list settled it or
+// a full query did; most small moves must be settled by the list (its centre stays where it was built).
+TEST(CollisionAvatarTest, NearbyTrianglesAnswerAsTheFullQueryAlongAPath) {
+  TriangleMesh mesh = makeIcosphere(Vector3d::Zero(), 0.2, 4);
+  for (int v = 0; v < mesh.vertexCount(); ++v) {
+    const Vector3d p = mesh.vertices.row(v);
+    mesh.vertices.row(v) *= 1.0 + 0.08 * std::sin(23.0 * p.x()) * std::cos(17.0 * p.y() + 11.0 * p.z());
+  }
+  const AvatarCollider collider(mesh);
+  const double r = collider.reuseRadius();
+  ASSERT_GT(r, 0.0);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int queries = 0, settled = 0, hits = 0, misses = 0;
+  for (int walker = 0; walker < 60; ++walker) {
+    SurfacePoint start;
+    ASSERT_TRUE(collider.closest(0.2 * randomDirection(rng, u), start));
+    Vector3d p = start.closest + 2.0 * r * u(rng) * start.normal;  // up to 2 r inside or outside
+    NearbyTriangles nearby;
+    for (int k = 0; k < 80; ++k) {
+      // Small moves and jumps of a few reuse radii; the point stays within 5 r of the surface.
+      const double lengths[] = {0.1, 0.3, 0.2, 1.5, 0.1, 0.2, 3.0};
+      const double length = lengths[k % 7] * r;
+      p += length * Vector3d(u(rng), u(rng), u(rng)).normalized();
+      SurfacePoint onSurface;
+      ASSERT_TRUE(collider.closest(p, onSurface));
+      if (std::abs(onSurface.signedDistance) > 5.0 * r) p = onSurface.closest + 4.0 * r * u(rng) * onSurface.normal;
+      const double bound = k % 3 == 0 ? std::numeric_limits<double>::infinity() : (k % 3 == 1 ? 2.0 * r : 0.5 * r);
+      const Vector3d centre = nearby.center;
+      const bool listed = nearby.complete > 0.0;
+      SurfacePoint answer;
+      const bool hit = collider.closest(p, answer, bound, nearby);
+      ++queries;
+      settled += listed && nearby.center == centre;
+      const double best = closestDistance(mesh, p);
+      ASSERT_EQ(hit, best < bound) << p.transpose() << " bound " << bound;
+      (hit ? hits : misses) += 1;
+      if (!hit) continue;
+      EXPECT_NEAR(std::abs(answer.signedDistance), best, 1e-13) << p.transpose();
+      SurfacePoint plain;
+      ASSERT_TRUE(collider.closest(p, plain, bound));
+      EXPECT_NEAR(answer.signedDistance, plain.signedDistance, 1e-13);
+      EXPECT_LT((answer.closest - plain.closest).norm(), 1e-12);
+      EXPECT_LT((answer.normal - plain.normal).norm(), 1e-9);
+    }
+  }
+  std::printf("%d queries: %d settled by the list, %d hits, %d misses\n", queries, settled, hits, misses);
+  EXPECT_GT(settled, queries / 2);  // the list settled most queries
+  EXPECT_GT(hits, queries / 4);     // both outcomes of the bounded queries are exercised
+  EXPECT_GT(misses, queries / 20);
 }
 
 }  // namespace

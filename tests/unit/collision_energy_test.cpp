@@ -144,6 +144,54 @@ TEST(CollisionEnergyTest, AvatarContactStartBoundsFollowTheMotion) {
   EXPECT_LT(fewestStartQueries, n / 2);  // and the start queries were skipped for many of them on the way
 }
 
+// Vertices beyond the search radius: those outside keep their distance as a bound and are not queried again at
+// the next step starts; those deeper inside than the radius are ignored until they come within it. Both kinds,
+// drifting 1 cm per step (outside ones inwards from 8-14 cm, inside ones outwards from 8-14 cm deep), must come
+// into contact exactly when an energy that queries everything says so.
+TEST(CollisionEnergyTest, AvatarContactFarVerticesKeepTheirBound) {
+  const double radius = 0.3;
+  auto collider = std::make_shared<AvatarCollider>(makeIcosphere(Eigen::Vector3d::Zero(), radius, 3));
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = 200;  // even vertices outside, odd ones inside
+  std::vector<Eigen::Vector3d> dirs(n);
+  std::vector<double> gap(n);
+  for (int v = 0; v < n; ++v) {
+    dirs[v] = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    gap[v] = 0.11 + 0.03 * u(rng);
+  }
+  auto positionsAt = [&](int step) {
+    VectorXd x(3 * n);
+    for (int v = 0; v < n; ++v) {
+      const double depth = std::max(0.0, gap[v] - 0.01 * step);  // towards the surface, then on it
+      x.segment<3>(3 * v) = dirs[v] * (v % 2 == 0 ? radius + depth : radius - depth);
+    }
+    return x;
+  };
+  ContactParameters params;
+  params.thickness = 0.005;
+  ASSERT_LT(params.searchRadius, 0.07);  // every vertex starts beyond it
+  AvatarContactEnergy stepped(collider, n, params);
+  int mostContacts = 0;
+  for (int step = 0; step < 16; ++step) {
+    const VectorXd xn = positionsAt(step);
+    newton::StepContext ctx;
+    ctx.previousPositions = &xn;
+    stepped.beginStep(ctx);
+    // After the first step start, the outside vertices are queried only once they may be near: 4 cm from 8 cm.
+    if (step >= 1 && step <= 3) {
+      EXPECT_LE(stepped.lastStartQueryCount(), n / 2) << "step " << step;
+    }
+    const VectorXd x = positionsAt(step + 1);
+    AvatarContactEnergy fresh(collider, n, params);
+    ASSERT_EQ(stepped.contacts(x).size(), fresh.contacts(x).size()) << "step " << step;
+    EXPECT_NEAR(stepped.value(x), fresh.value(x), 1e-12 * (1.0 + fresh.value(x))) << "step " << step;
+    EXPECT_LE((gradientOf(stepped, x) - gradientOf(fresh, x)).norm(), 1e-12 * (1.0 + gradientOf(fresh, x).norm()));
+    mostContacts = std::max(mostContacts, static_cast<int>(fresh.contacts(x).size()));
+  }
+  EXPECT_EQ(mostContacts, n);  // in the end all of them, from both sides
+}
+
 // Two triangles face to face a few millimetres apart plus a crossing edge: vertex-triangle and edge-edge pairs.
 struct TwoLayers {
   Eigen::MatrixX3i triangles;

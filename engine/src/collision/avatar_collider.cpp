@@ -161,7 +161,17 @@ bool AvatarCollider::closest(const Eigen::Vector3d& p, SurfacePoint& out, double
                       best2);
   if (f < 0) f = seed;  // nothing strictly closer than the hint
   if (f < 0) return false;
-  const PointTriangleResult r = closestPointTriangle(p, corner(f, 0), corner(f, 1), corner(f, 2));
+  fill(p, f, closestOn(p, f), out);
+  return true;
+}
+
+PointTriangleResult AvatarCollider::closestOn(const Eigen::Vector3d& p, int f) const {
+  const auto& V = m_mesh.vertices;
+  const auto& F = m_mesh.triangles;
+  return closestPointTriangle(p, V.row(F(f, 0)).transpose(), V.row(F(f, 1)).transpose(), V.row(F(f, 2)).transpose());
+}
+
+void AvatarCollider::fill(const Eigen::Vector3d& p, int f, const PointTriangleResult& r, SurfacePoint& out) const {
   const Eigen::Vector3d pn = pseudoNormal(f, r.region);
   const Eigen::Vector3d offset = p - r.closest;
   const double distance = std::sqrt(r.distanceSquared);
@@ -172,7 +182,73 @@ bool AvatarCollider::closest(const Eigen::Vector3d& p, SurfacePoint& out, double
   out.normal = distance > 1e-12 ? Eigen::Vector3d(sign * offset / distance) : pn;
   out.triangle = f;
   out.region = r.region;
-  return true;
+}
+
+bool AvatarCollider::closest(const Eigen::Vector3d& p, SurfacePoint& out, double maxDistance,
+                             NearbyTriangles& nearby) const {
+  const double reach = nearby.complete - (p - nearby.center).norm();
+  int best = -1;
+  PointTriangleResult bestResult;
+  bestResult.distanceSquared = std::numeric_limits<double>::infinity();
+  double bound = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < nearby.count; ++k) {  // nearest first (listNearby): the spheres skip most of the rest
+    const int f = nearby.triangles[k];
+    const Eigen::Vector4d& sphere = m_spheres[f];
+    const double limit = sphere[3] + bound;
+    if ((p - sphere.head<3>()).squaredNorm() >= limit * limit) continue;
+    const PointTriangleResult r = closestOn(p, f);
+    if (r.distanceSquared < bestResult.distanceSquared) {
+      bestResult = r;
+      bound = std::sqrt(r.distanceSquared);
+      best = f;
+    }
+  }
+  if (reach > 0.0) {
+    if (best >= 0 && bestResult.distanceSquared <= reach * reach) {  // nothing unlisted is closer
+      if (!(bestResult.distanceSquared < maxDistance * maxDistance)) return false;
+      fill(p, best, bestResult, out);
+      return true;
+    }
+    if (maxDistance <= reach) return false;  // listed and unlisted triangles alike are at least maxDistance away
+  }
+  const bool found = closest(p, out, maxDistance, best);
+  const double slack = 2.0 * reuseRadius();
+  if (found && std::abs(out.signedDistance) <= 4.0 * slack)
+    listNearby(p, std::abs(out.signedDistance) + slack, nearby);
+  else
+    nearby = NearbyTriangles{};
+  return found;
+}
+
+void AvatarCollider::listNearby(const Eigen::Vector3d& p, double radius, NearbyTriangles& nearby) const {
+  std::array<std::pair<double, int>, 4 * NearbyTriangles::kCapacity> found;
+  int count = 0;
+  double complete = radius;
+  const double r2 = radius * radius;
+  m_tree.forEachOverlap(inflated(boxOf(p, p), radius), [&](int f) {
+    const Eigen::Vector4d& sphere = m_spheres[f];
+    const double reach = sphere[3] + radius;
+    if ((p - sphere.head<3>()).squaredNorm() >= reach * reach) return;
+    const double d2 = closestOn(p, f).distanceSquared;
+    if (d2 >= r2 || d2 >= complete * complete) return;
+    if (count == static_cast<int>(found.size())) {  // full: keep the nearest kCapacity; the next bounds the rest
+      std::nth_element(found.begin(), found.begin() + NearbyTriangles::kCapacity, found.end());
+      complete = std::sqrt(found[NearbyTriangles::kCapacity].first);
+      count = NearbyTriangles::kCapacity;
+      if (d2 >= complete * complete) return;
+    }
+    found[count++] = {d2, f};
+  });
+  if (count > NearbyTriangles::kCapacity) {
+    std::nth_element(found.begin(), found.begin() + NearbyTriangles::kCapacity, found.begin() + count);
+    complete = std::min(complete, std::sqrt(found[NearbyTriangles::kCapacity].first));
+    count = NearbyTriangles::kCapacity;
+  }
+  std::sort(found.begin(), found.begin() + count);
+  nearby.center = p;
+  nearby.complete = complete;
+  nearby.count = count;
+  for (int k = 0; k < count; ++k) nearby.triangles[k] = found[k].second;
 }
 
 double AvatarCollider::signedDistance(const Eigen::Vector3d& p) const {

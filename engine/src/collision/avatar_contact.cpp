@@ -40,7 +40,7 @@ AvatarContactEnergy::AvatarContactEnergy(std::shared_ptr<const AvatarCollider> c
       m_penalty(params),
       m_startDistance(vertexCount, 0.0),
       m_startKind(vertexCount, StartKind::Far),
-      m_hint(vertexCount, -1) {}
+      m_nearby(vertexCount) {}
 
 void AvatarContactEnergy::beginStep(const newton::StepContext& ctx) {
   std::lock_guard lock(m_mutex);
@@ -60,13 +60,14 @@ void AvatarContactEnergy::beginStep(const newton::StepContext& ctx) {
         return;
       }
     }
-    // Nothing within the radius: treat as outside by the radius (deeper vertices are ignored, see header).
     ++queries.local();
     SurfacePoint s;
-    const bool found = m_collider->closest(p, s, radius, m_hint[v]);
+    bool found = m_collider->closest(p, s, radius, m_nearby[v]);
+    // Nothing within the radius: far outside, or deeper inside (ignored, see header). Outside, the exact distance
+    // carries over to later steps as a bound, so that a vertex hanging away from the body is not queried again.
+    if (!found && m_collider->closest(p, s) && s.signedDistance > 0.0) found = true;
     m_startDistance[v] = found ? s.signedDistance : radius;
     m_startKind[v] = found ? StartKind::Exact : StartKind::Far;
-    if (found) m_hint[v] = s.triangle;
   });
   m_startPositions = xn;
   m_lastStartQueries = queries.combine(std::plus<int>());
@@ -87,7 +88,9 @@ void AvatarContactEnergy::update(const Eigen::VectorXd& x) const {
       double bound = m_params.searchRadius;
       if (haveStart) {
         const double moved = (p - m_startPositions.segment<3>(3 * v)).norm();
-        if (m_startDistance[v] - th > moved) continue;  // 1-Lipschitz: d(p) >= d0 - moved > thickness
+        // 1-Lipschitz: d(p) >= d0 - moved > thickness. Not for a vertex deeper inside than the radius at the step
+        // start (Far): it may have come within the radius since.
+        if (m_startKind[v] != StartKind::Far && m_startDistance[v] - th > moved) continue;
         // Strict upper bound on the unsigned distance (1-Lipschitz), capped by the search radius; a start distance
         // that is only a lower bound gives none.
         if (m_startKind[v] == StartKind::Exact)
@@ -95,8 +98,7 @@ void AvatarContactEnergy::update(const Eigen::VectorXd& x) const {
       }
       ++queries.local();
       SurfacePoint s;
-      if (!m_collider->closest(p, s, bound, m_hint[v])) continue;
-      m_hint[v] = s.triangle;  // one task per vertex: no race
+      if (!m_collider->closest(p, s, bound, m_nearby[v])) continue;  // one task per vertex: no race
       if (!(s.signedDistance < th)) continue;
       Active a;
       a.stencil.vertices[0] = v;

@@ -38,7 +38,7 @@ void AvatarContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matri
   m_bound.assign(nf, 0.0f);
   m_freeStart.resize(nf, 3);
   m_freePredicted.resize(nf, 3);
-  if (static_cast<int>(m_hint.size()) != nf) m_hint.assign(nf, -1);
+  if (static_cast<int>(m_nearby.size()) != nf) m_nearby.assign(nf, collision::NearbyTriangles{});
   m_startInside.assign(nf, 0);
   m_startClosest.resize(nf);
   m_startNormal.resize(nf);
@@ -67,9 +67,8 @@ void AvatarContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matri
     collision::SurfacePoint sp;
     // Nothing within the radius: far outside, or deep inside (a garment placed through the body); the unbounded
     // query tells which (and, outside, gives a bound that lasts longer).
-    const bool found = m_collider->closest(start.row(v).transpose(), sp, watch + kBoundSlack, m_hint[d]) ||
-                       m_collider->closest(start.row(v).transpose(), sp, kUnbounded, m_hint[d]);
-    if (found) m_hint[d] = sp.triangle;
+    const bool found = m_collider->closest(start.row(v).transpose(), sp, watch + kBoundSlack, m_nearby[d]) ||
+                       m_collider->closest(start.row(v).transpose(), sp, kUnbounded, m_nearby[d]);
     m_startInside[d] = found && sp.signedDistance < 0.0;
     if (m_startInside[d]) {
       m_startClosest[d] = sp.closest;
@@ -115,12 +114,11 @@ int AvatarContacts::firstCrossing(const Eigen::Vector3d& p0, const Eigen::Vector
 char AvatarContacts::constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& z,
                                bool startInside, const Eigen::Vector3d& startClosest,
                                const Eigen::Vector3d& startNormal, Eigen::Vector3d& target, Eigen::Vector3d& normal,
-                               int& hint) const {
+                               collision::NearbyTriangles& nearby) const {
   const double thickness = m_options.thickness;
   const double reach = thickness + m_options.margin;
   collision::SurfacePoint sp;
-  const bool near = m_collider->closest(p1, sp, reach, hint);
-  if (near) hint = sp.triangle;
+  const bool near = m_collider->closest(p1, sp, reach, nearby);
   const double travel = (p1 - p0).norm();
   // A segment shorter than the end's distance to the surface cannot have crossed it.
   const bool mayCross = m_options.ccd && travel > 0.0 && (near ? sp.signedDistance < travel : travel >= reach);
@@ -283,7 +281,7 @@ AvatarContactStats AvatarContacts::addConstraints(const Eigen::MatrixX3d& xFree,
     kind[i] = planes ? constrainToPlanes(d, x, target[i], added[i])
                      : constrain(m_freeStart.row(d).transpose(), x, m_freePredicted.row(d).transpose(),
                                  m_startInside[d] != 0, m_startClosest[d], m_startNormal[d], target[i], normal,
-                                 m_hint[d]);
+                                 m_nearby[d]);
     if (!m_options.holdTargets || !kind[i]) return;
     if (m_heldKind[d]) {  // StepPlanes
       target[i] = m_held[d];

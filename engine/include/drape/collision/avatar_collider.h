@@ -3,6 +3,7 @@
 // signed-distance queries. The sign comes from the angle-weighted pseudo-normal of the closest feature (face,
 // edge or vertex; Baerentzen and Aanaes 2005), which is exact for a closed, consistently oriented mesh.
 #include <Eigen/Core>
+#include <array>
 #include <limits>
 #include <vector>
 
@@ -20,6 +21,16 @@ struct SurfacePoint {
   TriangleRegion region = TriangleRegion::Face;
 };
 
+// Triangles near the place a moving point (a garment vertex) was last searched from, kept by the point's owner
+// between queries: every triangle not listed is at least `complete` from `center`.
+struct NearbyTriangles {
+  static constexpr int kCapacity = 16;
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  double complete = 0.0;  // 0: nothing known
+  int count = 0;
+  std::array<int, kCapacity> triangles{};
+};
+
 class AvatarCollider {
  public:
   // mesh: closed, counter-clockwise seen from outside (drape::isClosedManifold); metres. Builds the BVH and the
@@ -34,6 +45,18 @@ class AvatarCollider {
   // (triangle inequality), and only those, listed at construction, are searched instead of the tree.
   bool closest(const Eigen::Vector3d& p, SurfacePoint& out,
                double maxDistance = std::numeric_limits<double>::infinity(), int hint = -1) const;
+  // The answer of closest(p, out, maxDistance) (the same point and distance; the triangle may differ only where two
+  // share the closest point), taken from `nearby` alone when the list settles it: the best listed triangle is no
+  // farther than the list's reach at p, complete - |p - center| (nothing unlisted can be closer), or none is
+  // within maxDistance and maxDistance is within that reach. Otherwise a hinted query (the best listed triangle),
+  // after which `nearby` lists the triangles within the answer's distance plus 2 reuseRadius() of p: the next
+  // queries of a point that moved less than reuseRadius() are settled by the list (unless more than kCapacity
+  // triangles lie that close: the nearest are kept, with a shorter reach). Points farther from the surface
+  // than 8 reuseRadius() (or with nothing within maxDistance) get an empty list: their neighbourhood is large, and
+  // the callers' distance bounds skip most of their queries anyway.
+  bool closest(const Eigen::Vector3d& p, SurfacePoint& out, double maxDistance, NearbyTriangles& nearby) const;
+  // A quarter of the mesh's mean edge length, metres.
+  double reuseRadius() const { return m_nearRadius / 6.0; }
   // Radius of the hint's neighbourhood (1.5 mean edge lengths of the mesh), metres.
   double hintRadius() const { return m_nearRadius; }
   // Signed distance of p (metres): negative inside. Unbounded query.
@@ -44,6 +67,11 @@ class AvatarCollider {
 
  private:
   Eigen::Vector3d pseudoNormal(int triangle, TriangleRegion region) const;
+  // The surface point of p on triangle f, whose closest point to p is r.
+  void fill(const Eigen::Vector3d& p, int f, const PointTriangleResult& r, SurfacePoint& out) const;
+  PointTriangleResult closestOn(const Eigen::Vector3d& p, int f) const;
+  // Lists in `nearby` the triangles within radius of p (the nearest kCapacity of them when there are more).
+  void listNearby(const Eigen::Vector3d& p, double radius, NearbyTriangles& nearby) const;
   // Lists, per triangle, the triangles whose bounding boxes come within m_nearRadius of its box (a superset of those
   // within m_nearRadius of it).
   void buildNeighbourhoods(const std::vector<BoundingBox>& boxes);

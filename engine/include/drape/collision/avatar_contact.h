@@ -14,9 +14,9 @@
 // near the body: a vertex found outside at the last step start carries the lower bound d0 - (its motion since)
 // instead, as long as that bound keeps it clear of the contact band by a margin. Queries are bounded by
 // searchRadius: the energy is that of vertices with -searchRadius < d < thickness. Results for the last x are
-// cached so that value, gradient and Hessian at the same x share one set of queries. Every query is hinted with the
-// avatar triangle the vertex's last query found (AvatarCollider::closest): a vertex near the body moves little between
-// evaluations, so most queries search that triangle's neighbourhood instead of walking the tree.
+// cached so that value, gradient and Hessian at the same x share one set of queries. Each vertex keeps the avatar
+// triangles near its last full query (AvatarCollider::closest with NearbyTriangles): a vertex near the body moves
+// little between evaluations, so most queries are settled by that short list instead of a search.
 #include <Eigen/Core>
 #include <memory>
 #include <mutex>
@@ -88,7 +88,8 @@ class AvatarContactEnergy : public newton::Energy {
   ContactParameters m_params;
   AvatarPenalty m_penalty;
   // What m_startDistance holds for a vertex: its signed distance (Exact), a lower bound on it (Lower), or the
-  // search radius because nothing was found within it (Far: far outside, or deeper inside than the radius).
+  // search radius because nothing was found within it (Far: deeper inside than the radius; a vertex found outside
+  // beyond the radius keeps its exact distance).
   enum class StartKind : char { Far, Exact, Lower };
   // beginStep keeps a lower bound instead of querying while it exceeds thickness + this margin (metres): the
   // vertex then needs no query in the step unless it moves by more than the margin within it.
@@ -96,7 +97,7 @@ class AvatarContactEnergy : public newton::Energy {
   Eigen::VectorXd m_startPositions;     // x at the last beginStep (empty before the first)
   std::vector<double> m_startDistance;  // signed distance at m_startPositions per vertex (see m_startKind)
   std::vector<StartKind> m_startKind;
-  mutable std::vector<int> m_hint;  // per vertex: the avatar triangle its last query found (-1: none)
+  mutable std::vector<NearbyTriangles> m_nearby;  // per vertex: the triangles near its last full query
   mutable std::mutex m_mutex;
   mutable Eigen::VectorXd m_cachedX;
   mutable std::vector<Active> m_active;

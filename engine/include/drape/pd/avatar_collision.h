@@ -30,11 +30,8 @@
 #include <memory>
 #include <vector>
 
+#include "drape/collision/avatar_collider.h"
 #include "drape/pd/contact_solve.h"
-
-namespace drape::collision {
-class AvatarCollider;
-}
 
 namespace drape::pd {
 
@@ -109,12 +106,12 @@ class AvatarContacts {
   // One watched DOF: a candidate of beginStep or a DOF that moved far (addConstraints). kind: 0 none,
   // 1 proximity, 2 CCD, +4 held by static friction. Reproject mode; p0 start, p1 collision-free position, z
   // inertial prediction; normal: the unit contact normal the target was pushed along.
-  // hint: the DOF's last closest collider triangle (updated; see AvatarCollider::closest).
+  // nearby: the collider triangles near the DOF's last full query (updated; see AvatarCollider::closest).
   // startInside: p0 is inside the collider, with closest surface point startClosest and outward normal
   // startNormal; p1 deeper than the reach is then pushed back out through that point's tangent plane.
   char constrain(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& z, bool startInside,
                  const Eigen::Vector3d& startClosest, const Eigen::Vector3d& startNormal, Eigen::Vector3d& target,
-                 Eigen::Vector3d& normal, int& hint) const;
+                 Eigen::Vector3d& normal, collision::NearbyTriangles& nearby) const;
   // StepPlanes mode: the same for free DOF d at collision-free position x (adds to m_planes[d]); added: set to
   // the number of half-spaces added.
   char constrainToPlanes(int d, const Eigen::Vector3d& x, Eigen::Vector3d& target, int& added);
@@ -134,7 +131,7 @@ class AvatarContacts {
   std::vector<float> m_bound;                  // per free DOF: lower bound of its start distance to the collider
   Eigen::MatrixX3d m_queriedAt;                // per free DOF: where its distance was last queried (beginStep)
   std::vector<double> m_queriedBound;          // per free DOF: the bound found there; -1 = never queried
-  std::vector<int> m_hint;                     // per free DOF: its last closest collider triangle, -1 = none yet
+  std::vector<collision::NearbyTriangles> m_nearby;  // per free DOF: the collider triangles near its last full query
   std::vector<char> m_startInside;             // per free DOF: its start is inside the collider (any depth)
   std::vector<Eigen::Vector3d> m_startClosest;  // per free DOF inside at its start: closest surface point
   std::vector<Eigen::Vector3d> m_startNormal;   // ... and the outward normal there
