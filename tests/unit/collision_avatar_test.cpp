@@ -38,6 +38,16 @@ double closestDistance(const TriangleMesh& mesh, const Vector3d& p) {
   return std::sqrt(best);
 }
 
+// A sphere of radius 0.2 with bumps, so that neighbouring triangles compete and differ in size.
+TriangleMesh lumpySphere() {
+  TriangleMesh mesh = makeIcosphere(Vector3d::Zero(), 0.2, 4);
+  for (int v = 0; v < mesh.vertexCount(); ++v) {
+    const Vector3d p = mesh.vertices.row(v);
+    mesh.vertices.row(v) *= 1.0 + 0.08 * std::sin(23.0 * p.x()) * std::cos(17.0 * p.y() + 11.0 * p.z());
+  }
+  return mesh;
+}
+
 TEST(CollisionAvatarTest, IcosphereSignedDistanceMatchesSphere) {
   const Vector3d centre(0.1, 1.2, -0.3);
   const double radius = 0.3;
@@ -134,11 +144,7 @@ TEST(CollisionAvatarTest, HintedQueryAnswersAsTheUnhintedOne) {
 // Near the surface with a nearby hint, the query searches only the hint's neighbourhood (hintRadius()); its answer
 // is still the closest point over all triangles, on a lumpy mesh whose triangles differ in size.
 TEST(CollisionAvatarTest, HintedQueryNearTheSurfaceFindsTheClosestOfAllTriangles) {
-  TriangleMesh mesh = makeIcosphere(Vector3d::Zero(), 0.2, 4);
-  for (int v = 0; v < mesh.vertexCount(); ++v) {  // bumps, so that neighbouring triangles compete
-    const Vector3d p = mesh.vertices.row(v);
-    mesh.vertices.row(v) *= 1.0 + 0.08 * std::sin(23.0 * p.x()) * std::cos(17.0 * p.y() + 11.0 * p.z());
-  }
+  const TriangleMesh mesh = lumpySphere();
   const AvatarCollider collider(mesh);
   const double radius = collider.hintRadius();
   ASSERT_GT(radius, 0.0);
@@ -173,11 +179,7 @@ TEST(CollisionAvatarTest, HintedQueryNearTheSurfaceFindsTheClosestOfAllTriangles
 // not, must be the closest point over all triangles (and that of the plain query), whether the list settled it or
 // a full query did; most small moves must be settled by the list (its centre stays where it was built).
 TEST(CollisionAvatarTest, NearbyTrianglesAnswerAsTheFullQueryAlongAPath) {
-  TriangleMesh mesh = makeIcosphere(Vector3d::Zero(), 0.2, 4);
-  for (int v = 0; v < mesh.vertexCount(); ++v) {
-    const Vector3d p = mesh.vertices.row(v);
-    mesh.vertices.row(v) *= 1.0 + 0.08 * std::sin(23.0 * p.x()) * std::cos(17.0 * p.y() + 11.0 * p.z());
-  }
+  const TriangleMesh mesh = lumpySphere();
   const AvatarCollider collider(mesh);
   const double r = collider.reuseRadius();
   ASSERT_GT(r, 0.0);
