@@ -60,9 +60,13 @@ std::string errorOf(F&& f) {
   return "";
 }
 
-// The placed garment of the scenes below (pins do not change the mesh).
+// The placed garment of the scenes below (pins do not change the mesh). ctest runs each test in its own process, two
+// at a time: each writes its reference scene under its own test's name, so that one process never reads the file
+// while another truncates it.
 const Garment& referenceGarment() {
-  static const Garment g = garmentOf(load(writeScene("pin_at_reference.json", "[]")));
+  static const Garment g = garmentOf(load(writeScene(
+      std::string("pin_at_reference_") + ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".json",
+      "[]")));
   return g;
 }
 
