@@ -101,23 +101,22 @@ void AvatarCollider::buildNeighbourhoods(const std::vector<BoundingBox>& boxes) 
   for (int f = 0; f < faces; ++f) std::copy(lists[f].begin(), lists[f].end(), m_near.begin() + m_nearStart[f]);
 }
 
-int AvatarCollider::nearestNeighbour(const Eigen::Vector3d& p, int hint, double& best2) const {
-  const auto& V = m_mesh.vertices;
-  const auto& F = m_mesh.triangles;
+int AvatarCollider::nearestAmong(const Eigen::Vector3d& p, const int* first, const int* last, double& best2,
+                                 PointTriangleResult& result) const {
   int best = -1;
   double bound = std::sqrt(best2);
-  for (int k = m_nearStart[hint]; k < m_nearStart[hint + 1]; ++k) {
-    const int g = m_near[k];
-    if (g == hint) continue;  // already in best2
+  for (const int* it = first; it != last; ++it) {
+    const int g = *it;
     // Every point of g is at least |p - centroid| - radius from p.
     const Eigen::Vector4d& sphere = m_spheres[g];
     const double reach = sphere[3] + bound;
     if ((p - sphere.head<3>()).squaredNorm() >= reach * reach) continue;
-    const double d2 = closestPointTriangle(p, V.row(F(g, 0)), V.row(F(g, 1)), V.row(F(g, 2))).distanceSquared;
-    if (d2 < best2) {
-      best2 = d2;
-      bound = std::sqrt(d2);
+    const PointTriangleResult r = closestOn(p, g);
+    if (r.distanceSquared < best2) {
+      best2 = r.distanceSquared;
+      bound = std::sqrt(best2);
       best = g;
+      result = r;
     }
   }
   return best;
@@ -152,13 +151,19 @@ bool AvatarCollider::closest(const Eigen::Vector3d& p, SurfacePoint& out, double
     // A triangle closer than sqrt(best2) has a point within sqrt(d2) + sqrt(best2) of the hint's closest point.
     local = std::sqrt(d2) + std::sqrt(best2) <= m_nearRadius;
   }
-  int f = local ? nearestNeighbour(p, hint, best2)
+  PointTriangleResult listed;  // the closest point on f when the neighbourhood search found it
+  int f = local ? nearestAmong(p, m_near.data() + m_nearStart[hint], m_near.data() + m_nearStart[hint + 1], best2,
+                               listed)
                 : m_tree.nearest(
                       p,
                       [&](int t) {
                         return closestPointTriangle(p, corner(t, 0), corner(t, 1), corner(t, 2)).distanceSquared;
                       },
                       best2);
+  if (local && f >= 0) {
+    fill(p, f, listed, out);
+    return true;
+  }
   if (f < 0) f = seed;  // nothing strictly closer than the hint
   if (f < 0) return false;
   fill(p, f, closestOn(p, f), out);
@@ -187,25 +192,13 @@ void AvatarCollider::fill(const Eigen::Vector3d& p, int f, const PointTriangleRe
 bool AvatarCollider::closest(const Eigen::Vector3d& p, SurfacePoint& out, double maxDistance,
                              NearbyTriangles& nearby) const {
   const double reach = nearby.complete - (p - nearby.center).norm();
-  int best = -1;
+  double best2 = std::numeric_limits<double>::infinity();
   PointTriangleResult bestResult;
-  bestResult.distanceSquared = std::numeric_limits<double>::infinity();
-  double bound = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < nearby.count; ++k) {  // nearest first (listNearby): the spheres skip most of the rest
-    const int f = nearby.triangles[k];
-    const Eigen::Vector4d& sphere = m_spheres[f];
-    const double limit = sphere[3] + bound;
-    if ((p - sphere.head<3>()).squaredNorm() >= limit * limit) continue;
-    const PointTriangleResult r = closestOn(p, f);
-    if (r.distanceSquared < bestResult.distanceSquared) {
-      bestResult = r;
-      bound = std::sqrt(r.distanceSquared);
-      best = f;
-    }
-  }
+  // Nearest first (listNearby): the spheres skip most of the rest.
+  const int best = nearestAmong(p, nearby.triangles.data(), nearby.triangles.data() + nearby.count, best2, bestResult);
   if (reach > 0.0) {
-    if (best >= 0 && bestResult.distanceSquared <= reach * reach) {  // nothing unlisted is closer
-      if (!(bestResult.distanceSquared < maxDistance * maxDistance)) return false;
+    if (best >= 0 && best2 <= reach * reach) {  // nothing unlisted is closer
+      if (!(best2 < maxDistance * maxDistance)) return false;
       fill(p, best, bestResult, out);
       return true;
     }

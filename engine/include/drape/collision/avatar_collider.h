@@ -75,8 +75,10 @@ class AvatarCollider {
   // Lists, per triangle, the triangles whose bounding boxes come within m_nearRadius of its box (a superset of those
   // within m_nearRadius of it).
   void buildNeighbourhoods(const std::vector<BoundingBox>& boxes);
-  // Closest triangle to p among the hint's neighbours with squared distance below best2 (updated); -1 when none.
-  int nearestNeighbour(const Eigen::Vector3d& p, int hint, double& best2) const;
+  // Closest triangle to p among [first, last) (culled by their bounding spheres) with squared distance below best2;
+  // best2 and result are updated to it; -1 when none.
+  int nearestAmong(const Eigen::Vector3d& p, const int* first, const int* last, double& best2,
+                   PointTriangleResult& result) const;
 
   TriangleMesh m_mesh;
   Bvh m_tree;
