@@ -79,7 +79,7 @@ void AvatarContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matri
     m_queriedBound[d] = found ? std::max(sp.signedDistance, 0.0) : watch + kBoundSlack;
     keep(m_queriedBound[d]);
   });
-  if (m_options.holdTargets) {
+  {  // held targets may be switched on between steps (setHoldTargets)
     m_held.resize(nf);
     m_heldNormal.resize(nf);
     m_heldKind.assign(nf, 0);

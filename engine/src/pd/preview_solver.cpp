@@ -309,6 +309,10 @@ PreviewReport PreviewSolver::Impl::attempt() {
     rep.status = status;
   };
 
+  // Held targets (preview_settings.h): in every step once sewn, before that in steps up to holdTargetsStep.
+  if (avatar && !sewn && !settings.holdContactTargets)
+    avatar->setHoldTargets(h <= settings.holdTargetsStep * (1.0 + 1e-9));
+
   // Inertial prediction z = x + h v + h^2 g (eq. 1); pins at their targets.
   Eigen::MatrixX3d z = x + h * v;
   z.rowwise() += (h * h * sys.gravity()).transpose();

@@ -59,6 +59,9 @@ const std::vector<SettingSpec>& Settings::specs() {
        1e-12, 1},
       {"solver.preview.hold_contact_targets", T::Boolean, "false", "",
        "avatar contact targets fixed within a step once found"},
+      {"solver.preview.hold_targets_step", T::Number, "0.0020833333333333333", "s",
+       "before the garment is sewn, avatar contact targets are held within steps no longer than this (0: only once "
+       "sewn)", 0, 1},
       {"solver.preview.sewn_gap", T::Number, "0.0005", "m",
        "once every stitch gap is below this, contact targets are held within a step and friction takes the cloth's "
        "tension as load, once they have stayed so for sewn_time (0: never)", 0, 1},

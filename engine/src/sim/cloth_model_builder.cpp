@@ -126,6 +126,7 @@ pd::PreviewSettings previewSettingsFrom(const Scene& scene) {
                                                      : pd::ContactSolveKind::DualCgThenPcg;
   p.pcgTolerance = s.number("solver.preview.pcg_tolerance");
   p.holdContactTargets = s.flag("solver.preview.hold_contact_targets");
+  p.holdTargetsStep = s.number("solver.preview.hold_targets_step");
   p.sewnGap = s.number("solver.preview.sewn_gap");
   p.sewnTime = s.number("solver.preview.sewn_time");
   p.sewnLocalStep = s.text("solver.preview.sewn_local_step") == "gauss_seidel" ? pd::LocalStepKind::GaussSeidel

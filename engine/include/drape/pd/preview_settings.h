@@ -81,6 +81,12 @@ struct PreviewSettings {
   bool contactWarmStart = true;     // start each collision-aware solve from the last contact forces (false: from 0)
   bool ccd = true;                  // vertex paths of the step tested against the avatar triangles (7.3)
   bool holdContactTargets = false;  // avatar contact targets fixed within a step once found (avatar_collision.h)
+  // Before the garment is sewn, targets are also held within every step no longer than this (seconds; 0: none).
+  // A held target pins its DOF for the step, like static friction; over a short step a vertex the stitches drag
+  // moves less than the contact thickness, so the pin costs nothing and stops targets cycling on body creases.
+  // Over longer steps pins tear a garment that is still closing its seams (docs/BENCHMARKS.md, stop 34). Steps
+  // halved below it (maxHalvings) hold too. Scenes default to 1/480 s (solver.preview.hold_targets_step).
+  double holdTargetsStep = 0.0;
   // Once every stitch gap has stayed below sewnGap (metres) for sewnTime (seconds of scene time, ending with a
   // converged step), the garment counts as sewn, for good: from the next step on, avatar contact targets are held
   // within a step (holdContactTargets) and friction is bounded by the collision-free load
