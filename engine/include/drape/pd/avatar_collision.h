@@ -87,7 +87,8 @@ class AvatarContacts {
   AvatarContactStats addConstraints(const Eigen::MatrixX3d& xFree, ContactAccumulator& acc);
 
   const AvatarContactOptions& options() const { return m_options; }
-  // From the next step on (the preview switches both once the garment is sewn, preview_settings.h sewnGap).
+  // From the next step on (the preview switches both once the garment is sewn, preview_settings.h sewnGap; before
+  // that it sets holdTargets per step, by the step's length: holdTargetsStep).
   void setHoldTargets(bool hold) { m_options.holdTargets = hold; }
   void setFrictionLoad(FrictionLoadKind load) { m_options.frictionLoad = load; }
 
