@@ -132,6 +132,7 @@ class Simulation {
   bool m_resumed = false;
   double m_restSince = -1.0;  // preview: time the settle criterion started to hold
   std::string m_previewFailure;
+  double m_overshootSince = -1.0;  // preview: scene time since which the stretch has been extreme (-1: it is not)
   int m_dragVertex = -1;
   Eigen::Vector3d m_dragTarget = Eigen::Vector3d::Zero();
 
@@ -149,8 +150,11 @@ class Simulation {
   // solver.preview.failure_strain has torn the garment on the body (the preview's vertex contact lets the body
   // through between vertices). Full pipeline: its state is no start for the drape, which starts from the placed
   // garment instead. Preview alone: the preview goes on, and previewFailure() says, from the first such step on,
-  // that its result is not to be trusted.
+  // that its result is not to be trusted. During the quasi-static start a stretch that stays past 4x
+  // failure_strain for 3 ms is a tear too (stuckOvershoot).
   void failPreviewIfTorn(const StepReport& report);
+  // Whether the preview's stretch has stayed extreme (see failPreviewIfTorn) up to this step.
+  bool stuckOvershoot(const StepReport& report);
   // Why a preview state at scene time `time` whose largest triangle stretch is maxStrain is torn (past
   // solver.preview.failure_strain), ending with what follows (previewGoesOn: the preview alone goes on; else the
   // drape starts from the placed garment); empty when it is not torn.
