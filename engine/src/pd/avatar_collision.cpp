@@ -79,11 +79,10 @@ void AvatarContacts::beginStep(const Eigen::MatrixX3d& start, const Eigen::Matri
     m_queriedBound[d] = found ? std::max(sp.signedDistance, 0.0) : watch + kBoundSlack;
     keep(m_queriedBound[d]);
   });
-  {  // held targets may be switched on between steps (setHoldTargets)
-    m_held.resize(nf);
-    m_heldNormal.resize(nf);
-    m_heldKind.assign(nf, 0);
-  }
+  // Sized whether or not targets are held now: the preview may switch holding on between steps (setHoldTargets).
+  m_held.resize(nf);
+  m_heldNormal.resize(nf);
+  m_heldKind.assign(nf, 0);
   m_candidates.clear();
   for (int d = 0; d < nf; ++d)
     if (near[d]) m_candidates.push_back(d);
