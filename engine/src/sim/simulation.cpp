@@ -125,7 +125,10 @@ void Simulation::build(const ResumeState* from) {
     m_resumed = from->previewPositions.rows() > 0;  // else the drape had started from the placed garment
     if (m_resumed) {
       const Eigen::VectorXd stretch = triangleStretch(m_garment.rest, from->previewPositions, m_garment.triangles);
-      m_previewFailure = tearReason(stretch.size() ? stretch.maxCoeff() : 0.0, from->previewTime);
+      StepReport saved;
+      saved.time = from->previewTime;
+      saved.maxStrain = stretch.size() ? stretch.maxCoeff(&saved.maxStrainTriangle) : 0.0;
+      m_previewFailure = tearReason(saved, from->previewPositions);
       m_resumed = m_previewFailure.empty();
     }
     startDrape(m_resumed ? from->previewPositions : Eigen::MatrixX3d(), m_resumed ? from->previewTime : 0.0);
@@ -230,13 +233,25 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
   m_atRest = false;
 }
 
-std::string Simulation::tearReason(double maxStrain, double time, bool previewGoesOn) const {
+std::string Simulation::tearReason(const StepReport& report, const Eigen::MatrixX3d& x, bool previewGoesOn) const {
   const double limit = m_scene.settings.number("solver.preview.failure_strain");
-  if (limit <= 0.0 || maxStrain <= limit) return "";
-  char message[300];
-  std::snprintf(message, sizeof message,
-                "the preview stretched a triangle to %.0f %% at t = %.3f s (the body passed through the cloth); %s",
-                100.0 * maxStrain, time,
+  if (limit <= 0.0 || report.maxStrain <= limit) return "";
+  std::string where;
+  const int t = report.maxStrainTriangle;
+  if (t >= 0 && t < m_garment.triangles.rows()) {
+    const Eigen::Vector3d centre =
+        (x.row(m_garment.triangles(t, 0)) + x.row(m_garment.triangles(t, 1)) + x.row(m_garment.triangles(t, 2))) / 3.0;
+    const int panel = t < m_garment.trianglePanel.size() ? m_garment.trianglePanel[t] : -1;
+    const std::string name =
+        panel >= 0 && panel < static_cast<int>(m_garment.panelNames.size()) ? m_garment.panelNames[panel] : "?";
+    char at[200];
+    std::snprintf(at, sizeof at, " (triangle %d of panel %s, at x %.3f, y %.3f, z %.3f m)", t, name.c_str(),
+                  centre.x(), centre.y(), centre.z());
+    where = at;
+  }
+  char message[500];
+  std::snprintf(message, sizeof message, "the preview stretched a triangle to %.0f %% at t = %.3f s%s; %s",
+                100.0 * report.maxStrain, report.time, where.c_str(),
                 previewGoesOn ? "the preview goes on, but its result is wrong: only the drape's can be trusted"
                               : "the drape starts from the placed garment");
   return message;
@@ -264,7 +279,7 @@ void Simulation::failPreviewIfTorn(const StepReport& report) {
   if (report.time <= m_scene.settings.number("solver.preview.relaxation_time") && !stuckOvershoot(report)) return;
   const bool previewAlone = m_scene.settings.text("solver.stage") == "preview";
   if (previewAlone && !m_previewFailure.empty()) return;  // said once, at the first torn step
-  m_previewFailure = tearReason(report.maxStrain, report.time, previewAlone);
+  m_previewFailure = tearReason(report, positions(), previewAlone);
   if (m_previewFailure.empty() || previewAlone) return;
   m_solver->assembly.reset();
   startDrape(Eigen::MatrixX3d(), 0.0);
@@ -434,7 +449,7 @@ StepReport Simulation::step() {
     report.featureContacts = countFeatureContacts(m_solver->contact, m_solver->newton->positions());
   }
   const Eigen::VectorXd stretch = triangleStretch(m_garment.rest, positions(), m_garment.triangles);
-  report.maxStrain = stretch.size() ? stretch.maxCoeff() : 0.0;
+  report.maxStrain = stretch.size() ? stretch.maxCoeff(&report.maxStrainTriangle) : 0.0;
   if (report.stage == "preview") failPreviewIfTorn(report);
   report.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;

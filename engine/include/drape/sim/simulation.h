@@ -42,6 +42,7 @@ struct StepReport {
   int contacts = 0;            // garment vertices in contact with a collider
   int featureContacts = 0;     // drape: avatar feature points pressing on a garment triangle (contact.avatar_features)
   double maxStrain = 0.0;      // largest triangle stretch (0.05 = 5%)
+  int maxStrainTriangle = -1;  // the triangle stretched most (garment triangle index); -1: no triangles
   double wallTime = 0.0;       // seconds spent in this step
   // Drape stage: wall seconds of this step in Hessian assembly, gradient (residual) evaluations, linear solves.
   double assemblyTime = 0.0;
@@ -155,10 +156,11 @@ class Simulation {
   void failPreviewIfTorn(const StepReport& report);
   // Whether the preview's stretch has stayed extreme (see failPreviewIfTorn) up to this step.
   bool stuckOvershoot(const StepReport& report);
-  // Why a preview state at scene time `time` whose largest triangle stretch is maxStrain is torn (past
-  // solver.preview.failure_strain), ending with what follows (previewGoesOn: the preview alone goes on; else the
-  // drape starts from the placed garment); empty when it is not torn.
-  std::string tearReason(double maxStrain, double time, bool previewGoesOn = false) const;
+  // Why the preview state x (|V| x 3) after `report` is torn (its largest stretch past
+  // solver.preview.failure_strain): how far, when, and where (the triangle, its panel and its centre in x), ending
+  // with what follows (previewGoesOn: the preview alone goes on; else the drape starts from the placed garment);
+  // empty when it is not torn.
+  std::string tearReason(const StepReport& report, const Eigen::MatrixX3d& x, bool previewGoesOn = false) const;
   // Starts the Newton drape from positions (|V| x 3; no rows = the placed garment) at scene time `time`.
   void startDrape(const Eigen::MatrixX3d& positions, double time);
 };
