@@ -160,8 +160,8 @@ TEST(PipelineHandoff, RelaxingPreviewIsNotSettledByItsZeroedVelocities) {
 
 TEST(PipelineHandoff, TornPreviewIsGivenUpForTheDrapeFromThePlacedGarment) {
   // The first preview step of the default scene stretches a triangle along the closing seams by about 300 %: with a
-  // failure strain of 200 % and no quasi-static start, that counts as a tear, and the
-  // drape starts from the placed garment at scene time 0 (with its initial relaxation), not from the preview's state.
+  // failure strain of 200 % and no quasi-static start, that counts as a tear, and the drape starts from the placed
+  // garment at scene time 0 (with its initial relaxation), not from the preview's state.
   Simulation sim(libraryScene("default.json", {{"solver.stage", "full"},
                                                {"solver.preview.failure_strain", "2"},
                                                {"solver.preview.relaxation_time", "0"}}));
