@@ -273,13 +273,13 @@ bool Simulation::stuckOvershoot(const StepReport& report) {
   return report.time - m_overshootSince >= kStuckTime * (1.0 - 1e-9);
 }
 
-void Simulation::failPreviewIfTorn(const StepReport& report) {
+void Simulation::failPreviewIfTorn(const StepReport& report, const Eigen::MatrixX3d& x) {
   // While the preview starts quasi-statically, the seams' first closing may overshoot (the trousers' hems at 1/1920
   // s: 518 %, back to 45 % within 6 ms); a tear is what is left after it, or an overshoot that stays (stuckOvershoot).
   if (report.time <= m_scene.settings.number("solver.preview.relaxation_time") && !stuckOvershoot(report)) return;
   const bool previewAlone = m_scene.settings.text("solver.stage") == "preview";
   if (previewAlone && !m_previewFailure.empty()) return;  // said once, at the first torn step
-  m_previewFailure = tearReason(report, positions(), previewAlone);
+  m_previewFailure = tearReason(report, x, previewAlone);
   if (m_previewFailure.empty() || previewAlone) return;
   m_solver->assembly.reset();
   startDrape(Eigen::MatrixX3d(), 0.0);
@@ -448,9 +448,10 @@ StepReport Simulation::step() {
     report.contacts = countContacts(m_solver->contact, m_solver->newton->positions());
     report.featureContacts = countFeatureContacts(m_solver->contact, m_solver->newton->positions());
   }
-  const Eigen::VectorXd stretch = triangleStretch(m_garment.rest, positions(), m_garment.triangles);
+  const Eigen::MatrixX3d x = positions();
+  const Eigen::VectorXd stretch = triangleStretch(m_garment.rest, x, m_garment.triangles);
   report.maxStrain = stretch.size() ? stretch.maxCoeff(&report.maxStrainTriangle) : 0.0;
-  if (report.stage == "preview") failPreviewIfTorn(report);
+  if (report.stage == "preview") failPreviewIfTorn(report, x);
   report.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }

@@ -153,7 +153,7 @@ class Simulation {
   // garment instead. Preview alone: the preview goes on, and previewFailure() says, from the first such step on,
   // that its result is not to be trusted. During the quasi-static start a stretch that stays past 4x
   // failure_strain for 3 ms is a tear too (stuckOvershoot).
-  void failPreviewIfTorn(const StepReport& report);
+  void failPreviewIfTorn(const StepReport& report, const Eigen::MatrixX3d& x);  // x: the positions after it
   // Whether the preview's stretch has stayed extreme (see failPreviewIfTorn) up to this step.
   bool stuckOvershoot(const StepReport& report);
   // Why the preview state x (|V| x 3) after `report` is torn (its largest stretch past
