@@ -83,9 +83,9 @@ const std::vector<SettingSpec>& Settings::specs() {
        "the fabric's shear stiffness (accurate when converged; under-converged it over-shears)", -1e300, 1e300, {"fabric", "stretch"}},
       {"solver.preview.failure_strain", T::Number, "5", "",
        "a preview triangle stretched past this strain (5 = 6x its rest length) after the quasi-static start (during "
-       "it: past 4x this for 3 ms) means the body went through the cloth: the full pipeline, or a drape asked to start "
-       "from that preview state, starts "
-       "the drape from the placed garment instead; a preview run alone goes on and says its result is wrong "
+       "it: past 4x this for 3 ms) is a tear (mostly the body through the cloth): the full pipeline, or a drape "
+       "asked to start from that preview state, starts the drape from the placed garment instead; a preview run alone "
+       "goes on and says its result is wrong "
        "(0: never)", 0, 1e6},
       {"solver.preview.relaxation_time", T::Number, "0.05", "s",
        "velocities zeroed after every step until this scene time (quasi-static assembly)", 0, 1e4},
