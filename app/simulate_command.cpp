@@ -23,7 +23,7 @@ nlohmann::json stepRecord(const StepReport& r) {
           {"cg_iterations", r.cgIterations}, {"splits", r.splits},
           {"residual", r.residual}, {"kinetic_energy_p99", r.kineticEnergy},
           {"contacts", r.contacts}, {"feature_contacts", r.featureContacts}, {"max_strain", r.maxStrain},
-          {"wall_time_s", r.wallTime}};
+          {"max_strain_triangle", r.maxStrainTriangle}, {"wall_time_s", r.wallTime}};
   if (r.stage == "preview") {
     j["domains"] = r.domains;
     j["sewn"] = r.sewn;

@@ -122,6 +122,10 @@ TEST(CliSimulate, TornPreviewIsReportedAndTheDrapeStartsFromThePlacedGarment) {
   ASSERT_GE(steps.size(), 2u);
   EXPECT_EQ(steps[0].at("stage"), "preview");
   EXPECT_EQ(steps[1].at("stage"), "drape");
+  // The torn step's record names the triangle the message names.
+  EXPECT_GT(steps[0].at("max_strain").get<double>(), 2.0);
+  const std::string torn = "triangle " + std::to_string(steps[0].at("max_strain_triangle").get<int>()) + " of panel ";
+  EXPECT_NE(j.at("preview_failure").get<std::string>().find(torn), std::string::npos) << j.at("preview_failure");
   EXPECT_LT(steps[1].at("time").get<double>(), 0.001);  // the drape's clock starts again at 0
 }
 
