@@ -19,6 +19,7 @@
 #include "drape/pd/domain_partition.h"
 #include "drape/pd/local_step.h"
 #include "drape/pd/pd_system.h"
+#include "drape/pd/preview_fabric.h"
 
 namespace drape::pd {
 namespace {
@@ -140,9 +141,9 @@ PreviewSolver::PreviewSolver(const newton::ClothModel& model, const PreviewSetti
   im.collider = std::move(collider);
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   im.arena = std::make_unique<tbb::task_arena>(threads);
-  im.model = model;
+  im.model = previewFabricModel(model, settings.timeStep, settings.courantLimit);
   im.levels.resize(static_cast<size_t>(std::max(settings.maxHalvings, 0)) + 1);
-  im.levels[0].system = std::make_unique<PdSystem>(model, settings);
+  im.levels[0].system = std::make_unique<PdSystem>(im.model, settings);
   im.system = im.levels[0].system.get();
   const int nv = model.numVertices();
   im.x = asRows(model.positions, nv);
@@ -161,7 +162,8 @@ PreviewSolver::PreviewSolver(const newton::ClothModel& model, const PreviewSetti
     im.useLevel(0);
   });
   // A contact outweighs the fabric and the stitches, however stiff the fabric (contactWeightFor).
-  const double stretch = im.system->largestStretch();
+  double stretch = 0.0;  // of the fabric's own stiffness, which the contacts outweigh also after a softened start
+  for (const newton::TriangleFabric& f : model.fabrics) stretch = std::max({stretch, f.stretchWarp, f.stretchWeft});
   if (im.collider)
     im.avatar = std::make_unique<AvatarContacts>(
         im.collider, AvatarContactOptions{settings.contactThickness, settings.contactMargin,

@@ -138,6 +138,7 @@ pd::PreviewSettings previewSettingsFrom(const Scene& scene) {
   p.shearModel = s.text("solver.preview.shear_model") == "stretch" ? pd::ShearModelKind::Stretch
                                                                   : pd::ShearModelKind::Fabric;
   p.relaxationTime = s.number("solver.preview.relaxation_time");
+  p.courantLimit = s.number("solver.preview.courant_limit");
   p.contactThickness = contactThickness(scene);
   p.sdIterations = s.integer("solver.preview.sd_iterations");
   p.ccd = s.flag("solver.preview.ccd");

@@ -12,6 +12,7 @@
 #include "drape/garment/garment_transfer.h"
 #include "drape/geometry/strain.h"
 #include "drape/newton/body_forces.h"
+#include "drape/pd/preview_fabric.h"
 #include "drape/pd/preview_solver.h"
 #include "drape/scene/pins.h"
 #include "drape/sim/snapshot_builder.h"
@@ -233,6 +234,10 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
   m_atRest = false;
 }
 
+// The tear message suggests softening the preview's fabric above this Courant number (preview_fabric.h): 5 kept
+// the default t-shirt whole in every fabric preset, 8 did not (docs/BENCHMARKS.md, stop 36).
+constexpr double kSoftenedCourant = 5.0;
+
 std::string Simulation::tearReason(const StepReport& report, const Eigen::MatrixX3d& x, bool previewGoesOn) const {
   const double limit = m_scene.settings.number("solver.preview.failure_strain");
   if (limit <= 0.0 || report.maxStrain <= limit) return "";
@@ -254,7 +259,17 @@ std::string Simulation::tearReason(const StepReport& report, const Eigen::Matrix
                 100.0 * report.maxStrain, report.time, where.c_str(),
                 previewGoesOn ? "the preview goes on, but its result is wrong: only the drape's can be trusted"
                               : "the drape starts from the placed garment");
-  return message;
+  std::string said = message;
+  // A fabric this stiff for its mesh and preview step closed the seams through the body (preview_fabric.h).
+  const double courant = pd::courantNumber(m_solver->model, m_scene.settings.number("solver.preview.time_step"));
+  if (m_scene.settings.number("solver.preview.courant_limit") <= 0.0 && courant > kSoftenedCourant) {
+    std::snprintf(message, sizeof message,
+                  " (the fabric is stiff for this mesh and preview step, Courant number %.1f: "
+                  "--set solver.preview.courant_limit=%g softens the preview's fabric)",
+                  courant, kSoftenedCourant);
+    said += message;
+  }
+  return said;
 }
 
 // The first closing's overshoots that recover stay below 1,000 % on the library scenes (the trousers: about 600 % for

@@ -1,0 +1,51 @@
+#include "drape/pd/preview_fabric.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace drape::pd {
+namespace {
+
+double meanRestEdge(const newton::ClothModel& model) {
+  const Eigen::Index triangles = model.triangles.rows();
+  if (triangles == 0) return 0.0;
+  double sum = 0.0;
+  for (Eigen::Index t = 0; t < triangles; ++t)
+    for (int k = 0; k < 3; ++k)
+      sum +=
+          (model.restCoords.row(model.triangles(t, k)) - model.restCoords.row(model.triangles(t, (k + 1) % 3))).norm();
+  return sum / (3.0 * static_cast<double>(triangles));
+}
+
+// Squared in-plane wave speed of a fabric, m^2/s^2 (0 without mass).
+double waveSpeed2(const newton::TriangleFabric& f) {
+  return f.density > 0.0 ? std::max(f.stretchWarp, f.stretchWeft) / f.density : 0.0;
+}
+
+}  // namespace
+
+double courantNumber(const newton::ClothModel& model, double h) {
+  const double edge = meanRestEdge(model);
+  if (!(edge > 0.0)) return 0.0;
+  double fastest = 0.0;
+  for (const newton::TriangleFabric& f : model.fabrics) fastest = std::max(fastest, waveSpeed2(f));
+  return std::sqrt(fastest) * h / edge;
+}
+
+newton::ClothModel previewFabricModel(const newton::ClothModel& model, double h, double limit) {
+  newton::ClothModel out = model;
+  const double edge = meanRestEdge(model);
+  if (!(limit > 0.0) || !(edge > 0.0) || !(h > 0.0)) return out;
+  const double allowed = std::pow(limit * edge / h, 2);  // largest k / rho
+  for (newton::TriangleFabric& f : out.fabrics) {
+    const double speed2 = waveSpeed2(f);
+    if (!(speed2 > allowed)) continue;
+    const double scale = allowed / speed2;
+    f.stretchWarp *= scale;
+    f.stretchWeft *= scale;
+    f.shear *= scale;
+  }
+  return out;
+}
+
+}  // namespace drape::pd
