@@ -162,8 +162,7 @@ PreviewSolver::PreviewSolver(const newton::ClothModel& model, const PreviewSetti
     im.useLevel(0);
   });
   // A contact outweighs the fabric and the stitches, however stiff the fabric (contactWeightFor).
-  double stretch = 0.0;  // of the fabric's own stiffness, which the contacts outweigh also after a softened start
-  for (const newton::TriangleFabric& f : model.fabrics) stretch = std::max({stretch, f.stretchWarp, f.stretchWeft});
+  const double stretch = im.system->largestStretch();
   if (im.collider)
     im.avatar = std::make_unique<AvatarContacts>(
         im.collider, AvatarContactOptions{settings.contactThickness, settings.contactMargin,

@@ -92,7 +92,7 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"solver.preview.courant_limit", T::Number, "0", "",
        "the preview softens a fabric in stretch and shear until an elastic wave crosses at most this many mean edge "
        "lengths per step (sqrt(stretch / density) time_step / edge; the default t-shirt in jersey: 4.7, in the "
-       "other presets 13-30, whose previews tear unless this is 5); the drape keeps the fabric's own stiffness "
+       "other presets 18-26, whose previews tear unless this is 5); the drape keeps the fabric's own stiffness "
        "(0: the preview too)", 0, 1e6},
       {"solver.preview.sd_iterations", T::Integer, "1", "", "dual steepest-descent updates before PCG (eq. 24)", 1,
        1000},
