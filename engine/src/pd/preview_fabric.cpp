@@ -6,15 +6,19 @@
 namespace drape::pd {
 namespace {
 
+// Mean rest edge length over the triangles' edges (a shared edge counted once per triangle); triangles naming a
+// vertex without rest coordinates are left out here, and PdSystem rejects the model for them.
 double meanRestEdge(const newton::ClothModel& model) {
-  const Eigen::Index triangles = model.triangles.rows();
-  if (triangles == 0) return 0.0;
+  const Eigen::Index vertices = model.restCoords.rows();
   double sum = 0.0;
-  for (Eigen::Index t = 0; t < triangles; ++t)
-    for (int k = 0; k < 3; ++k)
-      sum +=
-          (model.restCoords.row(model.triangles(t, k)) - model.restCoords.row(model.triangles(t, (k + 1) % 3))).norm();
-  return sum / (3.0 * static_cast<double>(triangles));
+  int edges = 0;
+  for (Eigen::Index t = 0; t < model.triangles.rows(); ++t) {
+    const Eigen::Vector3i tri = model.triangles.row(t);
+    if ((tri.array() < 0).any() || (tri.array() >= vertices).any()) continue;
+    for (int k = 0; k < 3; ++k) sum += (model.restCoords.row(tri[k]) - model.restCoords.row(tri[(k + 1) % 3])).norm();
+    edges += 3;
+  }
+  return edges > 0 ? sum / edges : 0.0;
 }
 
 // Squared in-plane wave speed of a fabric, m^2/s^2 (0 without mass).
@@ -34,8 +38,9 @@ double courantNumber(const newton::ClothModel& model, double h) {
 
 newton::ClothModel previewFabricModel(const newton::ClothModel& model, double h, double limit) {
   newton::ClothModel out = model;
+  if (!(limit > 0.0) || !(h > 0.0)) return out;
   const double edge = meanRestEdge(model);
-  if (!(limit > 0.0) || !(edge > 0.0) || !(h > 0.0)) return out;
+  if (!(edge > 0.0)) return out;
   const double allowed = std::pow(limit * edge / h, 2);  // largest k / rho
   for (newton::TriangleFabric& f : out.fabrics) {
     const double speed2 = waveSpeed2(f);
