@@ -58,7 +58,7 @@ double featureRadiusFor(double meanEdge, double thickness) {
   return std::min(meanEdge * meanEdge / (4.0 * thickness), kMaxFeatureRadius);
 }
 
-double meanEdgeLength(const Eigen::MatrixX3i& triangles, const Eigen::MatrixX3d& positions) {
+double meanEdgeLength(const Eigen::MatrixX3i& triangles, const Eigen::Ref<const Eigen::MatrixXd>& positions) {
   if (triangles.rows() == 0) return 0.0;
   double length = 0.0;
   for (int t = 0; t < triangles.rows(); ++t)

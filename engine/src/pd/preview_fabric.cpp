@@ -3,22 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include "drape/collision/avatar_feature_contact.h"
+
 namespace drape::pd {
 namespace {
 
-// Mean rest edge length over the triangles' edges (a shared edge counted once per triangle); triangles naming a
-// vertex without rest coordinates are left out here, and PdSystem rejects the model for them.
+// Mean rest edge length; 0 when a triangle names a vertex without rest coordinates (PdSystem rejects that model).
 double meanRestEdge(const newton::ClothModel& model) {
-  const Eigen::Index vertices = model.restCoords.rows();
-  double sum = 0.0;
-  int edges = 0;
-  for (Eigen::Index t = 0; t < model.triangles.rows(); ++t) {
-    const Eigen::Vector3i tri = model.triangles.row(t);
-    if ((tri.array() < 0).any() || (tri.array() >= vertices).any()) continue;
-    for (int k = 0; k < 3; ++k) sum += (model.restCoords.row(tri[k]) - model.restCoords.row(tri[(k + 1) % 3])).norm();
-    edges += 3;
-  }
-  return edges > 0 ? sum / edges : 0.0;
+  const Eigen::MatrixX3i& t = model.triangles;
+  if (t.size() > 0 && (t.minCoeff() < 0 || t.maxCoeff() >= model.restCoords.rows())) return 0.0;
+  return collision::meanEdgeLength(t, model.restCoords);
 }
 
 // Squared in-plane wave speed of a fabric, m^2/s^2 (0 without mass).

@@ -39,8 +39,9 @@ std::vector<FeatureVertex> avatarFeatureVertices(const TriangleMesh& avatar, dou
 // the bound would take in the whole body, and blunt features holding every triangle slow the drape down).
 constexpr double kMaxFeatureRadius = 0.03;
 double featureRadiusFor(double meanEdge, double thickness);
-// Mean edge length of a triangle mesh (positions |V| x 3, metres); 0 without triangles.
-double meanEdgeLength(const Eigen::MatrixX3i& triangles, const Eigen::MatrixX3d& positions);
+// Mean edge length of a triangle mesh (positions |V| x 3, or rest coordinates |V| x 2; metres); 0 without
+// triangles. Every triangle must name existing rows.
+double meanEdgeLength(const Eigen::MatrixX3i& triangles, const Eigen::Ref<const Eigen::MatrixXd>& positions);
 
 // A feature facing a garment triangle: the triangle's point at barycentric weights w lies on the feature's normal.
 struct FeaturePair {
