@@ -98,7 +98,8 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
         out << "  stage " << lastStage << " -> " << simulation.stage() << " at t=" << last.time << " s\n";
         lastStage = simulation.stage();
       }
-      if (simulation.previewFailure() != lastFailure) {  // a torn preview: given up, or (preview alone) going on
+      // A torn preview: started over softer, given up, or (preview alone) going on.
+      if (simulation.previewFailure() != lastFailure) {
         lastFailure = simulation.previewFailure();
         out << "  " << lastFailure << "\n";
       }
@@ -123,6 +124,9 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
              {"triangles", simulation.garment().triangleCount()}, {"pinned_vertices", simulation.pinned().size()},
              {"final", stepRecord(last)}, {"domains", domains}};
     if (!simulation.previewFailure().empty()) stats["preview_failure"] = simulation.previewFailure();
+    stats["preview_restarts"] = simulation.previewRestarts();
+    stats["preview_courant_number"] = simulation.previewCourantNumber();
+    stats["preview_courant_limit"] = simulation.previewCourantLimit();
     out << simulation.stage() << ": " << status << " after " << simulation.steps() << " steps, " << simulation.time()
         << " s simulated; wrote " << options.output << "\n";
     if (status == "Diverged")

@@ -127,6 +127,37 @@ TEST(CliSimulate, TornPreviewIsReportedAndTheDrapeStartsFromThePlacedGarment) {
   const std::string torn = "triangle " + std::to_string(steps[0].at("max_strain_triangle").get<int>()) + " of panel ";
   EXPECT_NE(j.at("preview_failure").get<std::string>().find(torn), std::string::npos) << j.at("preview_failure");
   EXPECT_LT(steps[1].at("time").get<double>(), 0.001);  // the drape's clock starts again at 0
+  // Jersey is not stiff enough for a retry (solver.preview.retry_courant_limit): none was made.
+  EXPECT_EQ(j.at("preview_restarts").get<int>(), 0);
+  EXPECT_LT(j.at("preview_courant_number").get<double>(), 5.0);
+  EXPECT_EQ(j.at("preview_courant_limit").get<double>(), 0.0);
+}
+
+TEST(CliSimulate, TornStiffPreviewStartsOverSofterOnceBeforeTheDrape) {
+  // Cotton shirting (Courant number about 26): the first tear starts the preview over softer, the second gives up.
+  const auto stats = kScratch / "torn_retry.json";
+  auto r = drape("--simulate " + asset("scenes/default.json") + " --solver full --fabric cotton_shirting" +
+                 " --set solver.preview.failure_strain=2 --set solver.preview.relaxation_time=0" +
+                 " --max-sim-time 0.002 -o " + quote((kScratch / "torn_retry.obj").string()) + " --stats " +
+                 quote(stats.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  const size_t over = r.out.find("the preview starts over from the placed garment");
+  const size_t given = r.out.find("the drape starts from the placed garment");
+  ASSERT_NE(over, std::string::npos) << r.out;
+  ASSERT_NE(given, std::string::npos) << r.out;
+  EXPECT_LT(over, given) << r.out;
+  const auto j = nlohmann::json::parse(readWhole(stats));
+  EXPECT_EQ(j.at("preview_restarts").get<int>(), 1);
+  EXPECT_GT(j.at("preview_courant_number").get<double>(), 5.0);
+  EXPECT_EQ(j.at("preview_courant_limit").get<double>(), 5.0);
+  const auto& steps = j.at("per_step");
+  ASSERT_GE(steps.size(), 3u);
+  EXPECT_EQ(steps[0].at("stage"), "preview");
+  EXPECT_EQ(steps[1].at("stage"), "preview");
+  EXPECT_EQ(steps[2].at("stage"), "drape");
+  // Each start is from the placed garment at time 0: both preview steps end one step after it.
+  EXPECT_DOUBLE_EQ(steps[0].at("time").get<double>(), steps[0].at("h").get<double>());
+  EXPECT_DOUBLE_EQ(steps[1].at("time").get<double>(), steps[1].at("h").get<double>());
 }
 
 TEST(CliSimulate, TornPreviewAloneIsReportedAndGoesOn) {

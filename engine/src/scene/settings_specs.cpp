@@ -83,9 +83,9 @@ const std::vector<SettingSpec>& Settings::specs() {
        "the fabric's shear stiffness (accurate when converged; under-converged it over-shears)", -1e300, 1e300, {"fabric", "stretch"}},
       {"solver.preview.failure_strain", T::Number, "5", "",
        "a preview triangle stretched past this strain (5 = 6x its rest length) after the quasi-static start (during "
-       "it: past 4x this for 3 ms) is a tear (mostly the body through the cloth): the full pipeline, or a drape "
-       "asked to start from that preview state, starts the drape from the placed garment instead; a preview run alone "
-       "goes on and says its result is wrong "
+       "it: past 4x this for 3 ms) is a tear (mostly the body through the cloth): the preview starts over softer "
+       "when retry_courant_limit says so, else the full pipeline, or a drape asked to start from that preview state, "
+       "starts the drape from the placed garment instead, and a preview run alone goes on and says its result is wrong "
        "(0: never)", 0, 1e6},
       {"solver.preview.relaxation_time", T::Number, "0.05", "s",
        "velocities zeroed after every step until this scene time (quasi-static assembly)", 0, 1e4},
@@ -94,6 +94,10 @@ const std::vector<SettingSpec>& Settings::specs() {
        "lengths per step (sqrt(stretch / density) time_step / edge; the default t-shirt in jersey: 4.7, in the "
        "other presets 18-26, whose previews tear unless this is 5); the drape keeps the fabric's own stiffness "
        "(0: the preview too)", 0, 1e6},
+      {"solver.preview.retry_courant_limit", T::Number, "5", "",
+       "a preview that tears (solver.preview.failure_strain) with a fabric whose Courant number is above this (see "
+       "courant_limit, which must be 0 or above this) starts over once from the placed garment with courant_limit at "
+       "this, before a tear gives it up (0: never)", 0, 1e6},
       {"solver.preview.sd_iterations", T::Integer, "1", "", "dual steepest-descent updates before PCG (eq. 24)", 1,
        1000},
       {"solver.preview.ccd", T::Boolean, "true", "", "CCD of the vertex paths against the avatar"},

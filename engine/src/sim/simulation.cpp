@@ -104,6 +104,7 @@ void Simulation::build(const ResumeState* from) {
   m_solver = std::make_unique<Solver>();
   m_solver->model = buildClothModel(m_scene, m_garment, m_pinned);
   m_solver->masses = newton::lumpedVertexMasses(m_solver->model);
+  m_courantLimit = m_scene.settings.number("solver.preview.courant_limit");
   if (m_colliderMesh.triangleCount() > 0)
     m_solver->collider = std::make_shared<const collision::AvatarCollider>(m_colliderMesh);
   const std::string& stage = m_scene.settings.text("solver.stage");
@@ -121,7 +122,11 @@ void Simulation::build(const ResumeState* from) {
       model.velocities.segment<3>(3 * v) = from->velocities.row(v).transpose();
     model.startTime = from->time;
     m_solver->previewOffset = from->time;
-    m_solver->preview = std::make_unique<pd::PreviewSolver>(model, previewSettingsFrom(m_scene), m_solver->collider);
+    // A preview that started over softer (solver.preview.retry_courant_limit) goes on that soft: its state has not
+    // seen the fabric's own stiffness.
+    if (from->previewCourantLimit > 0.0 && (m_courantLimit <= 0.0 || m_courantLimit > from->previewCourantLimit))
+      m_courantLimit = from->previewCourantLimit;
+    m_solver->preview = std::make_unique<pd::PreviewSolver>(model, previewSettings(), m_solver->collider);
   } else if (from && from->stage == "drape") {
     m_resumed = from->previewPositions.rows() > 0;  // else the drape had started from the placed garment
     if (m_resumed) {
@@ -135,13 +140,28 @@ void Simulation::build(const ResumeState* from) {
     startDrape(m_resumed ? from->previewPositions : Eigen::MatrixX3d(), m_resumed ? from->previewTime : 0.0);
   } else if (runsPreview) {
     m_resumed = false;
-    if (!startAssembly())
-      m_solver->preview =
-          std::make_unique<pd::PreviewSolver>(m_solver->model, previewSettingsFrom(m_scene), m_solver->collider);
+    startPreview();
   } else {
     m_resumed = false;
     startDrape(Eigen::MatrixX3d(), 0.0);
   }
+}
+
+pd::PreviewSettings Simulation::previewSettings() const {
+  pd::PreviewSettings settings = previewSettingsFrom(m_scene);
+  settings.courantLimit = m_courantLimit;
+  return settings;
+}
+
+void Simulation::startPreview() {
+  m_solver->previewOffset = 0.0;
+  m_restSince = -1.0;
+  m_overshootSince = -1.0;
+  if (!startAssembly())
+    m_solver->preview = std::make_unique<pd::PreviewSolver>(m_solver->model, previewSettings(), m_solver->collider);
+  else if (m_dragVertex >= 0)
+    m_solver->assembly->preview->setDrag(assemblyVertex(m_dragVertex), m_dragTarget);
+  if (m_solver->preview && m_dragVertex >= 0) m_solver->preview->setDrag(m_dragVertex, m_dragTarget);
 }
 
 bool Simulation::startAssembly() {
@@ -162,7 +182,7 @@ bool Simulation::startAssembly() {
   const newton::ClothModel model = buildClothModel(coarse, assembly->garment, resolvePins(coarse, assembly->garment));
   assembly->masses = newton::lumpedVertexMasses(model);
   assembly->toGarment = garmentTransfer(assembly->garment, m_garment);
-  assembly->preview = std::make_unique<pd::PreviewSolver>(model, previewSettingsFrom(m_scene), m_solver->collider);
+  assembly->preview = std::make_unique<pd::PreviewSolver>(model, previewSettings(), m_solver->collider);
   m_solver->assembly = std::move(assembly);
   return true;
 }
@@ -206,7 +226,7 @@ void Simulation::finishAssembly() {
   }
   model.startTime = start;
   m_solver->previewOffset = start;
-  m_solver->preview = std::make_unique<pd::PreviewSolver>(model, previewSettingsFrom(m_scene), m_solver->collider);
+  m_solver->preview = std::make_unique<pd::PreviewSolver>(model, previewSettings(), m_solver->collider);
   if (m_dragVertex >= 0) m_solver->preview->setDrag(m_dragVertex, m_dragTarget);
 }
 
@@ -234,11 +254,22 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
   m_atRest = false;
 }
 
-// The tear message suggests softening the preview's fabric above this Courant number (preview_fabric.h): 5 kept
-// the default t-shirt whole in every fabric preset, 8 did not (docs/BENCHMARKS.md, stop 36).
+// Without a retry (solver.preview.retry_courant_limit 0), the tear message suggests softening the preview's fabric
+// above this Courant number (preview_fabric.h): 5 kept the default t-shirt whole in every fabric preset, 8 did not
+// (docs/BENCHMARKS.md, stop 36).
 constexpr double kSoftenedCourant = 5.0;
 
-std::string Simulation::tearReason(const StepReport& report, const Eigen::MatrixX3d& x, bool previewGoesOn) const {
+double Simulation::previewCourantNumber() const {
+  return pd::courantNumber(m_solver->model, m_scene.settings.number("solver.preview.time_step"));
+}
+
+double Simulation::retryCourantLimit() const {
+  const double retry = m_scene.settings.number("solver.preview.retry_courant_limit");
+  if (retry <= 0.0 || (m_courantLimit > 0.0 && m_courantLimit <= retry)) return 0.0;  // off, or already this soft
+  return previewCourantNumber() > retry ? retry : 0.0;  // else softening to it would change nothing
+}
+
+std::string Simulation::tearReason(const StepReport& report, const Eigen::MatrixX3d& x, TearOutcome then) const {
   const double limit = m_scene.settings.number("solver.preview.failure_strain");
   if (limit <= 0.0 || report.maxStrain <= limit) return "";
   std::string where;
@@ -254,15 +285,24 @@ std::string Simulation::tearReason(const StepReport& report, const Eigen::Matrix
                   centre.x(), centre.y(), centre.z());
     where = at;
   }
-  char message[500];
+  const double courant = previewCourantNumber();
+  std::string next = "the drape starts from the placed garment";
+  if (then == TearOutcome::PreviewGoesOn)
+    next = "the preview goes on, but its result is wrong: only the drape's can be trusted";
+  if (then == TearOutcome::PreviewStartsOver) {
+    char over[200];
+    std::snprintf(over, sizeof over,
+                  "the preview starts over from the placed garment with its fabric softened from Courant number %.1f "
+                  "to %g (solver.preview.retry_courant_limit)",
+                  courant, retryCourantLimit());
+    next = over;
+  }
+  char message[600];
   std::snprintf(message, sizeof message, "the preview stretched a triangle to %.0f %% at t = %.3f s%s; %s",
-                100.0 * report.maxStrain, report.time, where.c_str(),
-                previewGoesOn ? "the preview goes on, but its result is wrong: only the drape's can be trusted"
-                              : "the drape starts from the placed garment");
+                100.0 * report.maxStrain, report.time, where.c_str(), next.c_str());
   std::string said = message;
   // A fabric this stiff for its mesh and preview step closed the seams through the body (preview_fabric.h).
-  const double courant = pd::courantNumber(m_solver->model, m_scene.settings.number("solver.preview.time_step"));
-  if (m_scene.settings.number("solver.preview.courant_limit") <= 0.0 && courant > kSoftenedCourant) {
+  if (then != TearOutcome::PreviewStartsOver && m_courantLimit <= 0.0 && courant > kSoftenedCourant) {
     std::snprintf(message, sizeof message,
                   " (the fabric is stiff for this mesh and preview step, Courant number %.1f: "
                   "--set solver.preview.courant_limit=%g softens the preview's fabric)",
@@ -293,11 +333,27 @@ void Simulation::failPreviewIfTorn(const StepReport& report, const Eigen::Matrix
   // s: 518 %, back to 45 % within 6 ms); a tear is what is left after it, or an overshoot that stays (stuckOvershoot).
   if (report.time <= m_scene.settings.number("solver.preview.relaxation_time") && !stuckOvershoot(report)) return;
   const bool previewAlone = m_scene.settings.text("solver.stage") == "preview";
-  if (previewAlone && !m_previewFailure.empty()) return;  // said once, at the first torn step
-  m_previewFailure = tearReason(report, x, previewAlone);
-  if (m_previewFailure.empty() || previewAlone) return;
+  if (previewAlone && m_previewWrong) return;  // said once, at the first torn step
+  const bool retry = retryCourantLimit() > 0.0;
+  const TearOutcome then = retry          ? TearOutcome::PreviewStartsOver
+                           : previewAlone ? TearOutcome::PreviewGoesOn
+                                          : TearOutcome::DrapeFromPlaced;
+  std::string reason = tearReason(report, x, then);
+  if (reason.empty()) return;
+  m_previewFailure = std::move(reason);
+  if (previewAlone && !retry) {
+    m_previewWrong = true;
+    return;
+  }
   m_solver->assembly.reset();
-  startDrape(Eigen::MatrixX3d(), 0.0);
+  if (!retry) {
+    startDrape(Eigen::MatrixX3d(), 0.0);
+    return;
+  }
+  m_courantLimit = retryCourantLimit();
+  ++m_previewRestarts;
+  m_solver->preview.reset();
+  startPreview();
 }
 
 void Simulation::setDrag(int vertex, const Eigen::Vector3d& target) {
@@ -325,6 +381,7 @@ ResumeState Simulation::resumeState() const {
   r.time = time();
   r.previewPositions = m_solver->previewPositions;
   r.previewTime = m_solver->previewTime;
+  r.previewCourantLimit = m_courantLimit;
   return r;
 }
 
@@ -338,7 +395,7 @@ std::vector<std::string> Simulation::terms() const {
   if (!m_solver->model.stitches.empty() || !m_solver->model.edgeStitches.empty()) t.push_back("pd_stitches");
   if (!m_solver->model.pinned.empty()) t.push_back("pins");
   if (m_solver->collider) t.push_back("pd_avatar_contact");
-  const pd::PreviewSettings ps = previewSettingsFrom(m_scene);
+  const pd::PreviewSettings ps = previewSettings();
   if (m_solver->collider && ps.friction > 0.0) t.push_back("pd_friction");
   if (ps.selfCollision) t.push_back("pd_self_contact");
   return t;

@@ -242,10 +242,11 @@ void SimulationWorker::stepOnce() {
   if (!m_running.load()) return;  // paused or cancelled between two steps (finishCancel shows a cancel)
   auto simulation = current();
   if (!simulation) return;
-  const bool hadFailure = !simulation->previewFailure().empty();
+  const std::string failure = simulation->previewFailure();
   const StepReport report = simulation->step();
   emit stepReported(report);
-  if (!hadFailure && !simulation->previewFailure().empty())
+  // A torn preview: started over softer, given up for the drape, or (preview alone) going on.
+  if (simulation->previewFailure() != failure)
     emit noticeOccurred(QString::fromStdString(simulation->previewFailure()));
   updateStage();
   if (report.status != StepStatus::Cancelled) publishResumeState();

@@ -11,6 +11,7 @@
 
 #include "drape/garment/garment.h"
 #include "drape/garment/garment_builder.h"
+#include "drape/pd/preview_settings.h"
 #include "drape/scene/scene.h"
 #include "drape/sim/snapshot.h"
 
@@ -64,6 +65,7 @@ struct ResumeState {
   Eigen::MatrixX3d previewPositions;  // the state the preview handed to the drape; no rows when the drape
                                       // started from the placed garment
   double previewTime = 0.0;          // scene time of previewPositions, s
+  double previewCourantLimit = 0.0;  // the Courant limit the preview ran with (a retry's; 0: none)
 };
 
 class Simulation {
@@ -117,7 +119,17 @@ class Simulation {
   // (ResumeState::previewPositions). A preview run alone (solver.stage preview) is not given up: from its first
   // torn step on, this says that its result is wrong and only the drape's can be trusted. Empty while none of this
   // happened.
+  //
+  // A tear with a fabric stiffer than solver.preview.retry_courant_limit first starts the preview over from the
+  // placed garment at scene time 0, its fabric softened to that Courant number (solver.preview.courant_limit); this
+  // then says so, and previewRestarts() counts it. Only a tear after that is given up as above.
   const std::string& previewFailure() const { return m_previewFailure; }
+  int previewRestarts() const { return m_previewRestarts; }
+  // The Courant number the preview's fabric is softened to (preview_fabric.h): solver.preview.courant_limit, or the
+  // retry's after a restart; 0: the fabric's own stiffness.
+  double previewCourantLimit() const { return m_courantLimit; }
+  // The fabric's own Courant number at the preview's time step (pd::courantNumber).
+  double previewCourantNumber() const;
   // Contact thickness the solvers use, metres (contact.thickness, else the thickest fabric, at least 2 mm).
   double contactThickness() const;
 
@@ -133,11 +145,25 @@ class Simulation {
   bool m_resumed = false;
   double m_restSince = -1.0;  // preview: time the settle criterion started to hold
   std::string m_previewFailure;
+  bool m_previewWrong = false;  // preview alone: a tear after which it went on has been said
+  int m_previewRestarts = 0;
+  double m_courantLimit = 0.0;     // previewCourantLimit()
   double m_overshootSince = -1.0;  // preview: scene time since which the stretch has been extreme (-1: it is not)
   int m_dragVertex = -1;
   Eigen::Vector3d m_dragTarget = Eigen::Vector3d::Zero();
 
+  // What follows a torn preview (tearReason).
+  enum class TearOutcome { DrapeFromPlaced, PreviewGoesOn, PreviewStartsOver };
+
   void build(const ResumeState* from);
+  // The scene's preview settings with the fabric softened to previewCourantLimit().
+  pd::PreviewSettings previewSettings() const;
+  // Starts the preview from the placed garment at scene time 0: on the assembly mesh when startAssembly() does, else
+  // on the garment's own.
+  void startPreview();
+  // The Courant limit a torn preview starts over with: solver.preview.retry_courant_limit when it is on, the
+  // preview is not that soft yet and the fabric is stiffer than it; else 0.
+  double retryCourantLimit() const;
   // Starts the preview on the coarser assembly mesh when solver.preview.assembly_edge_length asks for one; false
   // when the scene's own mesh is not that much finer, has no seam, has vertex pins or the pattern does not mesh so
   // coarsely.
@@ -158,9 +184,9 @@ class Simulation {
   bool stuckOvershoot(const StepReport& report);
   // Why the preview state x (|V| x 3) after `report` is torn (its largest stretch past
   // solver.preview.failure_strain): how far, when, and where (the triangle, its panel and its centre in x), ending
-  // with what follows (previewGoesOn: the preview alone goes on; else the drape starts from the placed garment);
-  // empty when it is not torn.
-  std::string tearReason(const StepReport& report, const Eigen::MatrixX3d& x, bool previewGoesOn = false) const;
+  // with what follows; empty when it is not torn.
+  std::string tearReason(const StepReport& report, const Eigen::MatrixX3d& x,
+                         TearOutcome then = TearOutcome::DrapeFromPlaced) const;
   // Starts the Newton drape from positions (|V| x 3; no rows = the placed garment) at scene time `time`.
   void startDrape(const Eigen::MatrixX3d& positions, double time);
 };
