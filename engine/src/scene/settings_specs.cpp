@@ -92,8 +92,17 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"solver.preview.courant_limit", T::Number, "0", "",
        "the preview softens a fabric in stretch and shear until an elastic wave crosses at most this many mean edge "
        "lengths per step (sqrt(stretch / density) time_step / edge; the default t-shirt in jersey: 4.7, in the "
-       "other presets 18-26, whose previews tear unless this is 5); the drape keeps the fabric's own stiffness "
-       "(0: the preview too)", 0, 1e6},
+       "other presets 18-26, whose previews tear at their own stiffness); the drape keeps the fabric's own "
+       "stiffness (0: the preview too; see pipeline_courant_limit)", 0, 1e6},
+      {"solver.preview.pipeline_courant_limit", T::Number, "5", "",
+       "courant_limit for the full pipeline's preview (the softer of the two when both are set): the drape that "
+       "follows it restores the fabric's stiffness; such a softened preview hands over after softened_max_time "
+       "(0: courant_limit alone)", 0, 1e6},
+      {"solver.preview.softened_max_time", T::Number, "0.075", "s",
+       "longest preview stage of the full pipeline when its fabric is softened (courant_limit, "
+       "pipeline_courant_limit), if shorter than max_time: a softened preview sags and slides more than the fabric "
+       "would (the A-line skirt 4 cm down the hips by 0.5 s)",
+       1e-3, 1e4},
       {"solver.preview.retry_courant_limit", T::Number, "5", "",
        "a preview that tears (solver.preview.failure_strain) with a fabric whose Courant number is above this (see "
        "courant_limit, which must be 0 or above this) starts over once from the placed garment with courant_limit at "

@@ -82,6 +82,14 @@ void liftOutOf(const collision::AvatarCollider& collider, double thickness, doub
 
 }  // namespace
 
+double previewCourantLimitOf(const Scene& scene) {
+  double limit = scene.settings.number("solver.preview.courant_limit");
+  const double pipeline = scene.settings.number("solver.preview.pipeline_courant_limit");
+  if (scene.settings.text("solver.stage") == "full" && pipeline > 0.0 && (limit <= 0.0 || pipeline < limit))
+    limit = pipeline;
+  return limit;
+}
+
 MeshingOptions meshingOptions(const Scene& scene) {
   MeshingOptions o;
   o.targetEdgeLength = scene.settings.number("mesh.target_edge_length");
@@ -104,7 +112,8 @@ void Simulation::build(const ResumeState* from) {
   m_solver = std::make_unique<Solver>();
   m_solver->model = buildClothModel(m_scene, m_garment, m_pinned);
   m_solver->masses = newton::lumpedVertexMasses(m_solver->model);
-  m_courantLimit = m_scene.settings.number("solver.preview.courant_limit");
+  m_courantLimit = previewCourantLimitOf(m_scene);
+  m_courantNumber = pd::courantNumber(m_solver->model, m_scene.settings.number("solver.preview.time_step"));
   if (m_colliderMesh.triangleCount() > 0)
     m_solver->collider = std::make_shared<const collision::AvatarCollider>(m_colliderMesh);
   const std::string& stage = m_scene.settings.text("solver.stage");
@@ -213,7 +222,7 @@ void Simulation::finishAssembly() {
               m_scene.settings.number("solver.preview.assembly_edge_length"), x);
   }
   m_solver->assembly.reset();
-  const bool timeUp = start >= m_scene.settings.number("solver.preview.max_time") - 1e-12;
+  const bool timeUp = start >= previewMaxTime() - 1e-12;
   if (m_scene.settings.text("solver.stage") == "full" && timeUp) {
     startDrape(x, start);
     return;
@@ -259,14 +268,17 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
 // (docs/BENCHMARKS.md, stop 36).
 constexpr double kSoftenedCourant = 5.0;
 
-double Simulation::previewCourantNumber() const {
-  return pd::courantNumber(m_solver->model, m_scene.settings.number("solver.preview.time_step"));
+double Simulation::previewMaxTime() const {
+  const double maxTime = m_scene.settings.number("solver.preview.max_time");
+  if (m_scene.settings.text("solver.stage") != "full" || m_courantLimit <= 0.0 || m_courantNumber <= m_courantLimit)
+    return maxTime;
+  return std::min(maxTime, m_scene.settings.number("solver.preview.softened_max_time"));
 }
 
 double Simulation::retryCourantLimit() const {
   const double retry = m_scene.settings.number("solver.preview.retry_courant_limit");
   if (retry <= 0.0 || (m_courantLimit > 0.0 && m_courantLimit <= retry)) return 0.0;  // off, or already this soft
-  return previewCourantNumber() > retry ? retry : 0.0;  // else softening to it would change nothing
+  return m_courantNumber > retry ? retry : 0.0;  // else softening to it would change nothing
 }
 
 std::string Simulation::tearReason(const StepReport& report, const Eigen::MatrixX3d& x, TearOutcome then) const {
@@ -285,7 +297,7 @@ std::string Simulation::tearReason(const StepReport& report, const Eigen::Matrix
                   centre.x(), centre.y(), centre.z());
     where = at;
   }
-  const double courant = previewCourantNumber();
+  const double courant = m_courantNumber;
   std::string next = "the drape starts from the placed garment";
   if (then == TearOutcome::PreviewGoesOn)
     next = "the preview goes on, but its result is wrong: only the drape's can be trusted";
@@ -487,7 +499,7 @@ StepReport Simulation::step() {
     // The coarse assembly has max_time from the start; the garment's own mesh has it again from where it took over
     // (or from a resumed state): it has its own settling to do.
     const double previewStart = assembling ? 0.0 : m_solver->previewOffset;
-    const bool timeUp = time() - previewStart >= m_scene.settings.number("solver.preview.max_time") - 1e-12;
+    const bool timeUp = time() - previewStart >= previewMaxTime() - 1e-12;
     report.time = time();
     ++m_steps;
     if (assembling) {

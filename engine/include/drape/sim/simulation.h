@@ -24,6 +24,10 @@ const char* toString(StepStatus status);
 // builds, for every other place that meshes the scene's garment (so that vertex counts agree).
 MeshingOptions meshingOptions(const Scene& scene);
 
+// The Courant number the scene's preview softens its fabric to (preview_fabric.h; 0: not softened):
+// solver.preview.courant_limit, or in the full pipeline the softer of it and solver.preview.pipeline_courant_limit.
+double previewCourantLimitOf(const Scene& scene);
+
 struct StepReport {
   StepStatus status = StepStatus::Converged;
   std::string stage;           // "preview" or "drape"
@@ -125,11 +129,11 @@ class Simulation {
   // then says so, and previewRestarts() counts it. Only a tear after that is given up as above.
   const std::string& previewFailure() const { return m_previewFailure; }
   int previewRestarts() const { return m_previewRestarts; }
-  // The Courant number the preview's fabric is softened to (preview_fabric.h): solver.preview.courant_limit, or the
-  // retry's after a restart; 0: the fabric's own stiffness.
+  // The Courant number the preview's fabric is softened to: previewCourantLimitOf(scene()), or the retry's after a
+  // restart; 0: the fabric's own stiffness.
   double previewCourantLimit() const { return m_courantLimit; }
   // The fabric's own Courant number at the preview's time step (pd::courantNumber).
-  double previewCourantNumber() const;
+  double previewCourantNumber() const { return m_courantNumber; }
   // Contact thickness the solvers use, metres (contact.thickness, else the thickest fabric, at least 2 mm).
   double contactThickness() const;
 
@@ -148,6 +152,7 @@ class Simulation {
   bool m_previewWrong = false;  // preview alone: a tear after which it went on has been said
   int m_previewRestarts = 0;
   double m_courantLimit = 0.0;     // previewCourantLimit()
+  double m_courantNumber = 0.0;    // previewCourantNumber()
   double m_overshootSince = -1.0;  // preview: scene time since which the stretch has been extreme (-1: it is not)
   int m_dragVertex = -1;
   Eigen::Vector3d m_dragTarget = Eigen::Vector3d::Zero();
@@ -164,6 +169,9 @@ class Simulation {
   // The Courant limit a torn preview starts over with: solver.preview.retry_courant_limit when it is on, the
   // preview is not that soft yet and the fabric is stiffer than it; else 0.
   double retryCourantLimit() const;
+  // The longest preview stage: solver.preview.max_time, or in the full pipeline softened_max_time when that is
+  // shorter and the preview's fabric is softened (previewCourantLimit() below the fabric's Courant number).
+  double previewMaxTime() const;
   // Starts the preview on the coarser assembly mesh when solver.preview.assembly_edge_length asks for one; false
   // when the scene's own mesh is not that much finer, has no seam, has vertex pins or the pattern does not mesh so
   // coarsely.

@@ -1,6 +1,9 @@
-// A torn preview with a stiff fabric starts over once, softer (solver.preview.retry_courant_limit): from the placed
-// garment at scene time 0, its fabric softened to the retry's Courant number, and a tear after that is given up as
-// before (the drape from the placed garment; a preview alone goes on and says its result is wrong).
+// Previews of fabrics stiff for their mesh and step (a Courant number above 5, preview_fabric.h). The full pipeline
+// softens its preview from the start (solver.preview.pipeline_courant_limit) and hands over sooner
+// (softened_max_time). A torn preview at the fabric's own stiffness starts over once, softer
+// (solver.preview.retry_courant_limit): from the placed garment at scene time 0, its fabric softened to the retry's
+// Courant number; a tear after that is given up as before (the drape from the placed garment; a preview alone goes
+// on and says its result is wrong).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -30,7 +33,8 @@ bool contains(const std::string& text, const std::string& part) {
 // Cotton shirting: Courant number about 26 at the default preview step; its preview tears at about 0.051 s
 // (docs/BENCHMARKS.md, stop 36).
 TEST(PreviewRetry, TornCottonPreviewStartsOverSofterFromThePlacedGarmentAndStaysWhole) {
-  Simulation sim(defaultTshirt("cotton_shirting", {{"solver.stage", "full"}}));
+  const Overrides ownStiffness = {{"solver.stage", "full"}, {"solver.preview.pipeline_courant_limit", "0"}};
+  Simulation sim(defaultTshirt("cotton_shirting", ownStiffness));
   const Eigen::MatrixX3d placed = sim.positions();
   // The Courant number it reports is the fabric's own, computed from the scene's model.
   EXPECT_GT(sim.previewCourantNumber(), 5.0);
@@ -51,8 +55,9 @@ TEST(PreviewRetry, TornCottonPreviewStartsOverSofterFromThePlacedGarmentAndStays
   EXPECT_FALSE(contains(said, "--set solver.preview.courant_limit")) << said;  // no hint: it is done already
   // The same preview the scene would run with courant_limit 5 from the start: its first step lands where that one's
   // does.
-  Simulation softFromStart(
-      defaultTshirt("cotton_shirting", {{"solver.stage", "full"}, {"solver.preview.courant_limit", "5"}}));
+  Overrides soft = ownStiffness;
+  soft.emplace_back("solver.preview.courant_limit", "5");
+  Simulation softFromStart(defaultTshirt("cotton_shirting", soft));
   EXPECT_LT((sim.positions() - softFromStart.positions()).cwiseAbs().maxCoeff(), 1e-15);
   const StepReport a = sim.step(), b = softFromStart.step();
   EXPECT_DOUBLE_EQ(a.time, b.time);
@@ -60,22 +65,30 @@ TEST(PreviewRetry, TornCottonPreviewStartsOverSofterFromThePlacedGarmentAndStays
   // An edit that resumes it keeps it soft (the scene still says courant_limit 0).
   const ResumeState from = sim.resumeState();
   EXPECT_EQ(from.previewCourantLimit, 5.0);
-  Simulation edited(defaultTshirt("cotton_shirting", {{"solver.stage", "full"}}), from);
+  Simulation edited(defaultTshirt("cotton_shirting", ownStiffness), from);
   ASSERT_TRUE(edited.resumed());
   EXPECT_EQ(edited.previewCourantLimit(), 5.0);
-  // The softened preview stays whole past the time the stiff one tore, and does not start over again.
+  // The softened preview stays whole past the time the stiff one tore, does not start over again, and, softened,
+  // hands over to the drape at softened_max_time, from its own state.
   StepReport last;
-  while (sim.stage() == "preview" && sim.time() < tornAt + 0.05) last = sim.step();
+  while (sim.stage() == "preview") last = sim.step();
+  const double softenedMaxTime = sim.scene().settings.number("solver.preview.softened_max_time");
+  ASSERT_GT(softenedMaxTime, tornAt);
   EXPECT_EQ(sim.previewRestarts(), 1);
   EXPECT_EQ(sim.previewFailure(), said);
-  EXPECT_LT(last.maxStrain, 0.6);
+  EXPECT_GE(last.time, softenedMaxTime - 1e-12);
+  EXPECT_LT(last.time, softenedMaxTime + last.h + 1e-12);
+  EXPECT_LT(last.maxStrain, 1.0);  // the torn one: 580 %
+  EXPECT_EQ(sim.resumeState().previewPositions.rows(), sim.garment().vertexCount());
 }
 
 TEST(PreviewRetry, ATearAfterTheRetryIsGivenUp) {
   // With a failure strain of 200 % and no quasi-static start, the first step's seam closing (about 300 %) tears the
   // cotton preview, and again after the retry: the full pipeline then drapes from the placed garment.
-  const Overrides strict = {
-      {"solver.stage", "full"}, {"solver.preview.failure_strain", "2"}, {"solver.preview.relaxation_time", "0"}};
+  const Overrides strict = {{"solver.stage", "full"},
+                            {"solver.preview.pipeline_courant_limit", "0"},
+                            {"solver.preview.failure_strain", "2"},
+                            {"solver.preview.relaxation_time", "0"}};
   Simulation sim(defaultTshirt("cotton_shirting", strict));
   const Eigen::MatrixX3d placed = sim.positions();
   sim.step();
@@ -105,8 +118,10 @@ TEST(PreviewRetry, ATearAfterTheRetryIsGivenUp) {
 }
 
 TEST(PreviewRetry, NoRetryWhenOffOrWhenTheFabricIsNotThatStiff) {
-  const Overrides strict = {
-      {"solver.stage", "full"}, {"solver.preview.failure_strain", "2"}, {"solver.preview.relaxation_time", "0"}};
+  const Overrides strict = {{"solver.stage", "full"},
+                            {"solver.preview.pipeline_courant_limit", "0"},
+                            {"solver.preview.failure_strain", "2"},
+                            {"solver.preview.relaxation_time", "0"}};
   // Off: the first tear is given up, and its message suggests the softening.
   Overrides off = strict;
   off.emplace_back("solver.preview.retry_courant_limit", "0");
@@ -128,6 +143,46 @@ TEST(PreviewRetry, NoRetryWhenOffOrWhenTheFabricIsNotThatStiff) {
   softened.step();
   EXPECT_EQ(softened.previewRestarts(), 0);
   EXPECT_EQ(softened.stage(), "drape");
+}
+
+TEST(PipelineSoftening, FullPipelineSoftensAStiffFabricFromTheStartAndHandsOverSooner) {
+  Simulation cotton(defaultTshirt("cotton_shirting", {{"solver.stage", "full"}}));
+  EXPECT_EQ(cotton.previewCourantLimit(), 5.0);
+  const double softenedMaxTime = cotton.scene().settings.number("solver.preview.softened_max_time");
+  ASSERT_LT(softenedMaxTime, cotton.scene().settings.number("solver.preview.max_time"));
+  // The same fabric's preview run alone keeps the fabric's own stiffness.
+  EXPECT_EQ(Simulation(defaultTshirt("cotton_shirting", {{"solver.stage", "preview"}})).previewCourantLimit(), 0.0);
+  double h = 0.0;
+  while (cotton.stage() == "preview") h = cotton.step().h;
+  EXPECT_TRUE(cotton.previewFailure().empty()) << cotton.previewFailure();
+  EXPECT_EQ(cotton.previewRestarts(), 0);
+  // Handed over at softened_max_time (not settled that soon: its quasi-static start lasts 0.05 s, the rest window
+  // 0.1 s), to a drape that starts from the preview's state.
+  EXPECT_GE(cotton.time(), softenedMaxTime - 1e-12);
+  EXPECT_LT(cotton.time(), softenedMaxTime + h + 1e-12);
+  EXPECT_EQ(cotton.resumeState().previewPositions.rows(), cotton.garment().vertexCount());
+
+  // Jersey knit (Courant number about 4.7) is below the limit: not softened, so no early hand-over.
+  Simulation jersey(defaultTshirt("jersey_knit", {{"solver.stage", "full"}}));
+  ASSERT_LT(jersey.previewCourantNumber(), 5.0);
+  while (jersey.stage() == "preview" && jersey.time() < 2.0 * softenedMaxTime) jersey.step();
+  EXPECT_EQ(jersey.stage(), "preview");
+}
+
+TEST(PipelineSoftening, TheSofterOfTheTwoLimitsHolds) {
+  const auto limit = [](const char* stage, const char* scene, const char* pipeline) {
+    return previewCourantLimitOf(
+        defaultTshirt("cotton_shirting", {{"solver.stage", stage},
+                                          {"solver.preview.courant_limit", scene},
+                                          {"solver.preview.pipeline_courant_limit", pipeline}}));
+  };
+  EXPECT_EQ(limit("full", "0", "5"), 5.0);
+  EXPECT_EQ(limit("full", "3", "5"), 3.0);
+  EXPECT_EQ(limit("full", "8", "5"), 5.0);
+  EXPECT_EQ(limit("full", "8", "0"), 8.0);
+  EXPECT_EQ(limit("full", "0", "0"), 0.0);
+  EXPECT_EQ(limit("preview", "0", "5"), 0.0);
+  EXPECT_EQ(limit("preview", "8", "5"), 8.0);
 }
 
 }  // namespace
