@@ -99,15 +99,17 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
         lastStage = simulation.stage();
       }
       // A torn preview: started over softer, given up, or (preview alone) going on.
-      if (simulation.previewFailure() != lastFailure) {
+      const bool torn = simulation.previewFailure() != lastFailure;
+      if (torn) {
         lastFailure = simulation.previewFailure();
         out << "  " << lastFailure << "\n";
+        if (simulation.time() < last.time) nextPrint = 0.0;  // started over, or the drape started, at time 0
       }
       if (last.status == StepStatus::Diverged || last.status == StepStatus::Cancelled) {
         status = toString(last.status);
         break;
       }
-      if (last.time >= nextPrint) {
+      if (!torn && last.time >= nextPrint) {
         char line[200];
         std::snprintf(line, sizeof line, "  %s t=%.3f s  h=%.2e  iterations=%d  cg=%d  residual=%.2e  KE=%.2e  contacts=%d\n",
                       last.stage.c_str(), last.time, last.h, last.iterations, last.cgIterations, last.residual,

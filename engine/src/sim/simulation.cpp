@@ -131,8 +131,8 @@ void Simulation::build(const ResumeState* from) {
       model.velocities.segment<3>(3 * v) = from->velocities.row(v).transpose();
     model.startTime = from->time;
     m_solver->previewOffset = from->time;
-    // A preview that started over softer (solver.preview.retry_courant_limit) goes on that soft: its state has not
-    // seen the fabric's own stiffness.
+    // A softened preview (the full pipeline's, or one that started over softer after a tear) goes on that soft: its
+    // state has not seen the fabric's own stiffness.
     if (from->previewCourantLimit > 0.0 && (m_courantLimit <= 0.0 || m_courantLimit > from->previewCourantLimit))
       m_courantLimit = from->previewCourantLimit;
     m_solver->preview = std::make_unique<pd::PreviewSolver>(model, previewSettings(), m_solver->collider);

@@ -69,7 +69,7 @@ struct ResumeState {
   Eigen::MatrixX3d previewPositions;  // the state the preview handed to the drape; no rows when the drape
                                       // started from the placed garment
   double previewTime = 0.0;          // scene time of previewPositions, s
-  double previewCourantLimit = 0.0;  // the Courant limit the preview ran with (a retry's; 0: none)
+  double previewCourantLimit = 0.0;  // the Courant number the preview's fabric was softened to (0: not softened)
 };
 
 class Simulation {
