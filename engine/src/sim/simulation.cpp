@@ -163,6 +163,8 @@ pd::PreviewSettings Simulation::previewSettings() const {
 }
 
 void Simulation::startPreview() {
+  m_solver->assembly.reset();
+  m_solver->preview.reset();
   m_solver->previewOffset = 0.0;
   m_restSince = -1.0;
   m_overshootSince = -1.0;
@@ -346,26 +348,25 @@ void Simulation::failPreviewIfTorn(const StepReport& report, const Eigen::Matrix
   if (report.time <= m_scene.settings.number("solver.preview.relaxation_time") && !stuckOvershoot(report)) return;
   const bool previewAlone = m_scene.settings.text("solver.stage") == "preview";
   if (previewAlone && m_previewWrong) return;  // said once, at the first torn step
-  const bool retry = retryCourantLimit() > 0.0;
-  const TearOutcome then = retry          ? TearOutcome::PreviewStartsOver
+  const double retry = retryCourantLimit();
+  const TearOutcome then = retry > 0.0    ? TearOutcome::PreviewStartsOver
                            : previewAlone ? TearOutcome::PreviewGoesOn
                                           : TearOutcome::DrapeFromPlaced;
   std::string reason = tearReason(report, x, then);
   if (reason.empty()) return;
   m_previewFailure = std::move(reason);
-  if (previewAlone && !retry) {
-    m_previewWrong = true;
-    return;
+  switch (then) {
+    case TearOutcome::PreviewGoesOn: m_previewWrong = true; break;
+    case TearOutcome::DrapeFromPlaced:
+      m_solver->assembly.reset();
+      startDrape(Eigen::MatrixX3d(), 0.0);
+      break;
+    case TearOutcome::PreviewStartsOver:
+      m_courantLimit = retry;
+      ++m_previewRestarts;
+      startPreview();
+      break;
   }
-  m_solver->assembly.reset();
-  if (!retry) {
-    startDrape(Eigen::MatrixX3d(), 0.0);
-    return;
-  }
-  m_courantLimit = retryCourantLimit();
-  ++m_previewRestarts;
-  m_solver->preview.reset();
-  startPreview();
 }
 
 void Simulation::setDrag(int vertex, const Eigen::Vector3d& target) {

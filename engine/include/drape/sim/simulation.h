@@ -163,8 +163,8 @@ class Simulation {
   void build(const ResumeState* from);
   // The scene's preview settings with the fabric softened to previewCourantLimit().
   pd::PreviewSettings previewSettings() const;
-  // Starts the preview from the placed garment at scene time 0: on the assembly mesh when startAssembly() does, else
-  // on the garment's own.
+  // Starts the preview (over) from the placed garment at scene time 0: on the assembly mesh when startAssembly()
+  // does, else on the garment's own.
   void startPreview();
   // The Courant limit a torn preview starts over with: solver.preview.retry_courant_limit when it is on, the
   // preview is not that soft yet and the fabric is stiffer than it; else 0.
