@@ -1,11 +1,13 @@
 // Behaviour of the Backward-Euler Newton solver: quadratic convergence, hanging cloth equilibrium and symmetry,
 // seams closing, time splitting, initial relaxation, divergence and cancellation.
+#include "drape/newton/newton_solver.h"
+
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "drape/newton/newton_solver.h"
 #include "drape/newton/springs.h"
 
 using namespace drape::newton;
@@ -183,6 +185,40 @@ TEST(NewtonSolver, TimeSplittingRecoversFromForcedFailure) {
   EXPECT_NEAR(r.h, 0.05 * std::pow(0.75, r.splits), 1e-15);
   for (int k = 0; k < 20; ++k) ASSERT_EQ(solver.step().status, NewtonStatus::Converged);
   EXPECT_TRUE(solver.positions().allFinite());
+}
+
+// NewtonSettings::startStep: the first step is startStep instead of h_max, and h grows back to h_max by the
+// time-splitting rule (1 / omega after I_s good steps), as the drape that starts from the preview's state does.
+TEST(NewtonSolver, StartStepGrowsToHMaxByTheSplittingRule) {
+  NewtonSettings s;
+  s.relaxation = false;
+  s.hMax = 4e-3;
+  s.startStep = 1e-3;
+  NewtonSolver solver(hangingCloth(8, 0.3), s);
+  double expected = s.startStep;
+  int good = 0, stepsToHMax = -1;
+  for (int k = 0; k < 40; ++k) {
+    const NewtonStepReport r = solver.step();
+    ASSERT_EQ(r.status, NewtonStatus::Converged);
+    ASSERT_EQ(r.splits, 0);
+    EXPECT_DOUBLE_EQ(r.h, expected) << "step " << k;
+    if (r.h == s.hMax && stepsToHMax < 0) stepsToHMax = k;
+    if (++good == s.growAfterSteps) {
+      expected = std::min(s.hMax, expected / s.omega);
+      good = 0;
+    }
+  }
+  // 1 -> 4 ms takes five growths (the last one capped at h_max) of five steps each.
+  EXPECT_EQ(stepsToHMax, 25);
+
+  // A start step above h_max is capped; with the relaxation the smaller of it and h_max / 16 starts.
+  s.startStep = 1.0;
+  EXPECT_DOUBLE_EQ(NewtonSolver(hangingCloth(8, 0.3), s).step().h, s.hMax);
+  s.relaxation = true;
+  s.startStep = 1e-4;
+  EXPECT_DOUBLE_EQ(NewtonSolver(hangingCloth(8, 0.3), s).step().h, 1e-4);
+  s.startStep = 1e-3;
+  EXPECT_DOUBLE_EQ(NewtonSolver(hangingCloth(8, 0.3), s).step().h, s.hMax / 16);
 }
 
 // Both relaxation step rules: "hold" keeps h_max / 16 for the whole 0.1 s window; "grow" (the default, the paper's

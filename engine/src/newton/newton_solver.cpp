@@ -95,6 +95,7 @@ NewtonSolver::NewtonSolver(ClothModel model, NewtonSettings settings, std::vecto
     m_coarse = std::make_unique<CoarseSpace>(m_matrix, m_settings.coarseAggregate);
   m_useCoarse = m_settings.coarseFromIterations <= 0;
   m_h = m_settings.relaxation ? m_settings.hMax / m_settings.relaxationStepDivisor : m_settings.hMax;
+  if (m_settings.startStep > 0.0) m_h = std::min(m_h, m_settings.startStep);
 }
 
 NewtonSolver::~NewtonSolver() = default;

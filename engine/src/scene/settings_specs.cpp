@@ -136,9 +136,10 @@ const std::vector<SettingSpec>& Settings::specs() {
        "equations and its zeroed velocities are unchanged)"},
       {"solver.newton.relaxation_after_preview", T::Boolean, "false", "",
        "initial relaxation also when the drape starts from the preview's state (seams already closed)"},
-      {"solver.newton.h_max_factor_after_preview", T::Number, "3", "",
-       "the drape that starts from the preview's state steps up to this many times h_max: it settles a garment "
-       "already near rest, where the step barely moves the result (1: the step of a drape from the placed garment)",
+      {"solver.newton.h_max_factor_after_preview", T::Number, "10", "",
+       "the drape that starts from the preview's state starts at h_max and grows (as after a time split) up to this "
+       "many times h_max: it settles a garment already near rest, where the step barely moves the result (1: the step "
+       "of a drape from the placed garment)",
        1, 100},
       {"solver.newton.early_stop_threshold", T::Number, "1e-8", "J",
        "early stop: 99th percentile of per-vertex kinetic energy", 0, 1},

@@ -257,6 +257,7 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
   // BENCHMARKS.md, "The drape after the preview steps 3 ms").
   if (positions.rows() > 0) {
     settings.relaxation = m_scene.settings.flag("solver.newton.relaxation_after_preview");
+    settings.startStep = settings.hMax;
     settings.hMax *= m_scene.settings.number("solver.newton.h_max_factor_after_preview");
   }
   m_solver->newton = std::make_unique<newton::NewtonSolver>(std::move(model), settings,

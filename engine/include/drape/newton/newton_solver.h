@@ -25,6 +25,9 @@ struct NewtonSettings {
   double hMin = 1e-8;             // s; a step that fails below this is Diverged
   double omega = 0.75;            // time-splitting factor
   int growAfterSteps = 5;         // I_s: good steps before h grows by 1/omega
+  // First step, s; 0: hMax (hMax / relaxationStepDivisor with the relaxation). Not in the paper: the drape that
+  // starts from the preview's state starts below its longer hMax and grows to it.
+  double startStep = 0.0;
   double alpha = 5.0;             // air drag, 1/s
   double betaStretch = 1e-2;      // stretch dissipation, s
   double betaBend = 1e-1;         // bending dissipation, s
