@@ -1,13 +1,12 @@
 // Behaviour of the Backward-Euler Newton solver: quadratic convergence, hanging cloth equilibrium and symmetry,
-// seams closing, time splitting, initial relaxation, divergence and cancellation.
-#include "drape/newton/newton_solver.h"
-
+// seams closing, time splitting, a first step below h_max, initial relaxation, divergence and cancellation.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
+#include "drape/newton/newton_solver.h"
 #include "drape/newton/springs.h"
 
 using namespace drape::newton;

@@ -254,7 +254,9 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
   newton::NewtonSettings settings = newtonSettingsFrom(m_scene.settings);
   // The relaxation settles a placed garment (seams apart, pre-stretch); the preview has already done that.
   // Its time steps may be longer: it settles a garment already near rest, whose result they barely move (docs/
-  // BENCHMARKS.md, "The drape after the preview steps 3 ms").
+  // BENCHMARKS.md, "The drape after the preview steps 3 ms"). They start at h_max and grow: the state the preview
+  // hands over (its fabric softened, stop 37) may need a short first step, and starting at the cap cost the
+  // trousers 10-13 time splits (stop 38).
   if (positions.rows() > 0) {
     settings.relaxation = m_scene.settings.flag("solver.newton.relaxation_after_preview");
     settings.startStep = settings.hMax;
