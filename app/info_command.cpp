@@ -1,14 +1,14 @@
 // drape --info FILE: what a pattern, scene or avatar file contains.
 #include <algorithm>
 #include <iomanip>
-#include <sstream>
 #include <ostream>
+#include <sstream>
 
 #include "commands.h"
 #include "drape/avatar/avatar_loader.h"
-#include "drape/garment/garment_builder.h"
 #include "drape/pattern/edge_curve.h"
 #include "drape/scene/pins.h"
+#include "drape/sim/scene_garment.h"
 #include "drape/sim/simulation.h"
 
 namespace drape::app {
@@ -50,7 +50,7 @@ void describeScene(const Scene& scene, std::ostream& out) {
   describePattern(scene.pattern, out);
   const MeshingOptions meshing = meshingOptions(scene);
   Diagnostics diagnostics;
-  const Garment garment = buildGarment(scene.pattern, meshing, &diagnostics);
+  const Garment garment = buildSceneGarment(scene, &diagnostics);
   const auto pinned = resolvePins(scene, garment);
   out << "garment (target edge " << meshing.targetEdgeLength << " m):\n  vertices: " << garment.vertexCount()
       << "\n  triangles: " << garment.triangleCount() << "\n  stitch vertex pairs: " << garment.stitchPairs.size()

@@ -10,10 +10,10 @@
 #include "drape/avatar/avatar_loader.h"
 #include "drape/core/diagnostics.h"
 #include "drape/core/input_error.h"
-#include "drape/garment/garment_builder.h"
 #include "drape/render/headless.h"
 #include "drape/render/png_io.h"
 #include "drape/scene/pins.h"
+#include "drape/sim/scene_garment.h"
 #include "drape/sim/simulation.h"
 #include "drape/sim/snapshot_builder.h"
 #include "scene_request.h"
@@ -25,7 +25,7 @@ namespace {
 Snapshot stageSnapshot(Scene scene, std::ostream& out) {
   if (scene.settings.text("solver.stage") == "none") {
     Diagnostics diagnostics;
-    const Garment garment = buildGarment(scene.pattern, meshingOptions(scene), &diagnostics);
+    const Garment garment = buildSceneGarment(scene, &diagnostics);
     resolvePins(scene, garment);  // validates the pins
     printWarnings(scene.diagnostics.warnings(), out);
     printWarnings(diagnostics.warnings(), out);

@@ -6,10 +6,10 @@
 
 #include "commands.h"
 #include "drape/core/input_error.h"
-#include "drape/garment/garment_builder.h"
 #include "drape/io/atomic_file.h"
 #include "drape/io/mesh_export.h"
 #include "drape/scene/pins.h"
+#include "drape/sim/scene_garment.h"
 #include "drape/sim/simulation.h"
 #include "drape/sim/snapshot_builder.h"
 #include "scene_request.h"
@@ -60,8 +60,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
 
   if (stage == "none") {
     Diagnostics diagnostics;
-    const Garment garment =
-        buildGarment(scene.pattern, meshingOptions(scene), &diagnostics);
+    const Garment garment = buildSceneGarment(scene, &diagnostics);
     const auto pinned = resolvePins(scene, garment);
     warnings = scene.diagnostics.warnings();
     warnings.insert(warnings.end(), diagnostics.warnings().begin(), diagnostics.warnings().end());

@@ -126,6 +126,8 @@ TEST_F(SceneDocumentTest, PanelFabricChangeIsUndoable) {
 TEST_F(SceneDocumentTest, SavedSceneLoadsBackToTheSameScene) {
   ASSERT_TRUE(document.setSetting("fabric.stretch_warp", "12345"));
   ASSERT_TRUE(document.setSetting("solver.cg.tolerance", "0.005"));
+  ASSERT_TRUE(document.setSetting("contact.friction", "false"));
+  ASSERT_TRUE(document.setSetting("placement.translate", "0,0.05,0"));
   const std::string panel = document.scene().pattern.panels.front().name;
   ASSERT_TRUE(document.setPanelFabric(panel, "denim"));
   const std::filesystem::path file = testOutputDir() / "gui_saved" / "saved_scene.json";
@@ -149,10 +151,14 @@ TEST_F(SceneDocumentTest, SavedSceneLoadsBackToTheSameScene) {
     if (key == "pattern") continue;  // written relative, resolved against the new folder (checked above)
     if (spec->type == SettingType::Number)
       EXPECT_EQ(loaded.settings.number(key), current.settings.number(key)) << key;
+    else if (spec->type == SettingType::Vector3)
+      EXPECT_TRUE(loaded.settings.vector3(key).isApprox(current.settings.vector3(key))) << key;
     else
       EXPECT_EQ(savedChanged.at(key), value) << key;
   }
   EXPECT_EQ(loaded.fabric.stretchWarp, 12345.0);
+  EXPECT_FALSE(loaded.settings.flag("contact.friction"));
+  EXPECT_TRUE(loaded.settings.vector3("placement.translate").isApprox(Eigen::Vector3d(0, 0.05, 0)));
   EXPECT_EQ(loaded.settings.number("mesh.target_edge_length"), 0.1);
   EXPECT_EQ(loaded.fabricOfPanel(panel).name, loadFabricPreset("denim").name);
   ASSERT_EQ(loaded.colliders.size(), current.colliders.size());

@@ -1,5 +1,6 @@
 // The real GarmentCode shirt and pencil dress (../shared/data/garmentcode) drape on Drape's generated female
-// mannequin (issue #4) and the shirt on GarmentCode's own mean_all body (issue #5). These run the full Newton
+// mannequin (issue #4), the shirt on GarmentCode's own mean_all body (issue #5), and Garment-Pattern-Generator's
+// skirt moved onto mean_all by its scene's placement.translate. These run the full Newton
 // drape from the placed panels on a coarse mesh (4 cm edges), so each takes tens of seconds in Release.
 //
 // Checked after the drape, against independent queries of the avatar (a separate AvatarCollider on the loaded
@@ -43,15 +44,13 @@ struct DrapeOutcome {
   double wallTime = 0.0;  // s
 };
 
-// Drapes pattern on avatar (metres) with the given mesh edge length (m) and simulated-time limit (s).
-DrapeOutcome drape(const std::filesystem::path& pattern, const std::filesystem::path& avatar, double edge,
-                   double maxSimTime) {
-  SceneRequest request;
-  request.input = pattern;
-  request.avatarFile = avatar.string();
-  request.overrides = {{"mesh.target_edge_length", std::to_string(edge)},
-                       {"solver.max_sim_time", std::to_string(maxSimTime)}};
+// Drapes the scene (a scene file, or a pattern with request.avatarFile) with the given mesh edge length (m) and
+// simulated-time limit (s).
+DrapeOutcome drape(SceneRequest request, double edge, double maxSimTime) {
+  request.overrides.push_back({"mesh.target_edge_length", std::to_string(edge)});
+  request.overrides.push_back({"solver.max_sim_time", std::to_string(maxSimTime)});
   Scene scene = loadScene(request);
+  const std::filesystem::path pattern = scene.patternFile, avatar = scene.avatarFile;
   const collision::AvatarCollider body(scene.avatar);  // independent of the simulation's own collider
   Simulation sim(std::move(scene));
   DrapeOutcome out;
@@ -92,6 +91,15 @@ DrapeOutcome drape(const std::filesystem::path& pattern, const std::filesystem::
       out.wallTime, 1e3 * out.maxPenetration, 1e3 * out.contactThickness, 1e3 * out.maxStitchGap, out.topY,
       out.centroidY, 100.0 * out.nearFraction);
   return out;
+}
+
+// Drapes pattern on avatar (metres).
+DrapeOutcome drape(const std::filesystem::path& pattern, const std::filesystem::path& avatar, double edge,
+                   double maxSimTime) {
+  SceneRequest request;
+  request.input = pattern;
+  request.avatarFile = avatar.string();
+  return drape(request, edge, maxSimTime);
 }
 
 // The checks shared by every garment: levels from the body's measurement file (metres above the floor).
@@ -157,6 +165,41 @@ TEST(RealGarmentDrape, ShirtOnMeanAllDrapesToRest) {
   const DrapeOutcome o = drape(shirt, body, 0.04, 1.5);
   EXPECT_TRUE(o.atRest) << "no early stop within " << o.simTime << " s";
   expectHangsOnTorso(o, mannequinLevels(loadBodyMeasurements(measurements)));
+}
+
+// Garment-Pattern-Generator places its panels around a body whose origin is at the hips; mean_all stands on the
+// floor. Placed as the file says, the skirt lies below the feet, the scene says so, and it would fall forever; the
+// test scene's placement.translate (1.15 m up) puts its waist at mean_all's, where it drapes to rest.
+TEST(RealGarmentDrape, GarmentPatternGeneratorSkirtMovedOntoMeanAllHangsFromTheWaist) {
+  DRAPE_SHARED_FILE(skirt, "garment-pattern-generator/skirt_2_panels.json");
+  DRAPE_SHARED_FILE(body, "garmentcode/mean_all.obj");
+  DRAPE_SHARED_FILE(measurements, "garmentcode/mean_all.yaml");
+  const MannequinLevels levels = mannequinLevels(loadBodyMeasurements(measurements));
+  SceneRequest request;
+  request.input = test::testDataDir() / "scenes" / "gpg_skirt_2_panels_on_mean_all.json";
+  auto placementWarnings = [](const Scene& scene) {
+    int n = 0;
+    for (const std::string& w : scene.diagnostics.warnings()) n += w.find("placement.translate") != std::string::npos;
+    return n;
+  };
+  {
+    SceneRequest asInTheFile = request;
+    asInTheFile.overrides = {{"placement.translate", "0,0,0"}, {"mesh.target_edge_length", "0.04"}};
+    const Simulation placed(loadScene(asInTheFile));
+    EXPECT_EQ(placementWarnings(placed.scene()), 1);
+    EXPECT_LT(placed.positions().col(1).maxCoeff(), 0.0) << "the skirt as the file places it is below the feet";
+  }
+  const Simulation moved(loadScene(request));
+  EXPECT_EQ(placementWarnings(moved.scene()), 0);
+
+  const DrapeOutcome o = drape(request, 0.04, 2.0);
+  EXPECT_FALSE(o.diverged);
+  EXPECT_TRUE(o.atRest) << "no early stop within " << o.simTime << " s";
+  EXPECT_LE(o.maxPenetration, o.contactThickness) << "a garment vertex ended inside the body";
+  EXPECT_LT(o.maxStitchGap, 0.01) << "a seam did not close";
+  EXPECT_NEAR(o.topY, levels.waist, 0.05) << "the skirt does not hang from the waist";
+  EXPECT_LT(o.centroidY, levels.waist);
+  EXPECT_GT(o.centroidY, levels.crotch - 0.15);
 }
 
 }  // namespace

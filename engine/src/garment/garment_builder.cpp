@@ -217,7 +217,8 @@ Garment buildGarment(const Pattern& pattern, const MeshingOptions& options, Diag
     for (Eigen::Index i = 0; i < nv; ++i) {
       // placePanelPoint takes file units; the mesh is in metres.
       g.positions.row(v0 + i) =
-          placePanelPoint(panel, m.vertices.row(i).transpose() * pattern.unitsInMeter, pattern.unitsInMeter)
+          (placePanelPoint(panel, m.vertices.row(i).transpose() * pattern.unitsInMeter, pattern.unitsInMeter) +
+           options.placementOffset)
               .transpose();
     }
     g.vertexPanel.segment(v0, nv).setConstant(p);

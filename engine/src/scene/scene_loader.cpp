@@ -10,13 +10,16 @@
 namespace drape {
 namespace {
 
-// Sections whose leaves are settings ("mesh": {"target_edge_length": 0.02} -> mesh.target_edge_length).
-const char* kSettingSections[] = {"avatar", "fabric", "mesh", "sim", "solver", "contact", "camera", "render"};
 // Top-level keys with their own structure.
 const char* kStructuredKeys[] = {"pattern", "colliders", "pins", "panel_fabrics", "name", "description"};
 
 bool isOneOf(const std::string& key, const char* const* begin, const char* const* end) {
   return std::find_if(begin, end, [&](const char* k) { return key == k; }) != end;
+}
+
+bool isSettingSection(const std::string& key) {
+  const auto& sections = sceneSettingSections();
+  return std::find(sections.begin(), sections.end(), key) != sections.end();
 }
 
 // Writes the leaves of object into settings under prefix.
@@ -42,12 +45,25 @@ std::string listOf(const char* const* begin, const char* const* end) {
   return s;
 }
 
+std::string listOf(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& name : names) s += (s.empty() ? "" : ", ") + name;
+  return s;
+}
+
 std::filesystem::path resolveRelative(const std::filesystem::path& base, const std::string& path) {
   std::filesystem::path p(path);
   return p.is_absolute() ? p : base / p;
 }
 
 }  // namespace
+
+const std::vector<std::string>& sceneSettingSections() {
+  // Sections whose leaves are settings ("mesh": {"target_edge_length": 0.02} -> mesh.target_edge_length).
+  static const std::vector<std::string> sections = {"avatar", "fabric",  "mesh",   "placement", "sim",
+                                                    "solver", "contact", "camera", "render"};
+  return sections;
+}
 
 bool isPatternFile(const std::filesystem::path& file) {
   const nlohmann::json j = json::parseFile(file);
@@ -68,7 +84,7 @@ Scene loadScene(const SceneRequest& request) {
     scene.settings.set("pattern", request.input.string(), where);
   } else {
     for (const auto& [key, value] : j.items()) {
-      if (isOneOf(key, std::begin(kSettingSections), std::end(kSettingSections))) {
+      if (isSettingSection(key)) {
         if (key == "fabric" && value.is_string()) {
           scene.settings.set("fabric.preset", value.get<std::string>(), where);
         } else if (key == "avatar" && value.is_string()) {
@@ -90,9 +106,9 @@ Scene loadScene(const SceneRequest& request) {
       } else if (key == "panel_fabrics") {
         panelFabrics = value;
       } else if (!isOneOf(key, std::begin(kStructuredKeys), std::end(kStructuredKeys))) {
-        throw InputError(where + ": unknown key '" + key + "'; valid keys: " +
-                         listOf(std::begin(kStructuredKeys), std::end(kStructuredKeys)) + ", " +
-                         listOf(std::begin(kSettingSections), std::end(kSettingSections)));
+        throw InputError(where + ": unknown key '" + key +
+                         "'; valid keys: " + listOf(std::begin(kStructuredKeys), std::end(kStructuredKeys)) + ", " +
+                         listOf(sceneSettingSections()));
       }
     }
     if (!scene.settings.has("pattern") || scene.settings.text("pattern").empty())

@@ -27,6 +27,8 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"mesh.conforming_seams", T::Boolean, "true", "", "stitched edges sampled alike and sewn vertex to vertex; "
        "false: each edge at its own spacing, seams sewn vertex to edge point (non-conforming)"},
       {"sim.gravity", T::Number, "-9.81", "m/s^2", "gravity along y", -1000, 1000},
+      {"placement.translate", T::Vector3, "0,0,0", "m", "moves the placed garment, every panel, by this vector: for "
+       "a pattern laid out around another body's origin"},
       // Simulation stages and limits
       {"solver.stage", T::Choice, "drape", "", "what --simulate runs: none (placed garment), preview (PD-DD), drape "
        "(Newton from the placed garment) or full (preview, then the drape from the preview state)", -1e300, 1e300,

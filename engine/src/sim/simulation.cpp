@@ -90,13 +90,6 @@ double previewCourantLimitOf(const Scene& scene) {
   return limit;
 }
 
-MeshingOptions meshingOptions(const Scene& scene) {
-  MeshingOptions o;
-  o.targetEdgeLength = scene.settings.number("mesh.target_edge_length");
-  o.conformingSeams = scene.settings.flag("mesh.conforming_seams");
-  return o;
-}
-
 Simulation::Simulation(Scene scene) : m_scene(std::move(scene)) { build(nullptr); }
 
 Simulation::Simulation(Scene scene, const ResumeState& from) : m_scene(std::move(scene)) { build(&from); }
@@ -105,7 +98,7 @@ Simulation::~Simulation() = default;
 
 void Simulation::build(const ResumeState* from) {
   Diagnostics diagnostics;
-  m_garment = buildGarment(m_scene.pattern, meshingOptions(m_scene), &diagnostics);
+  m_garment = buildSceneGarment(m_scene, &diagnostics);
   m_scene.diagnostics.append(diagnostics);
   m_pinned = resolvePins(m_scene, m_garment);
   m_colliderMesh = mergedColliders(m_scene);

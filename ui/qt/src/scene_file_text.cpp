@@ -10,9 +10,6 @@
 namespace drape::qt {
 namespace {
 
-// Sections of the scene format whose leaves are settings (engine/src/scene/scene_loader.cpp).
-const char* const kSettingSections[] = {"avatar", "fabric", "mesh", "sim", "solver", "camera", "render"};
-
 QJsonObject readObject(const std::filesystem::path& file) {
   QFile f(QString::fromStdString(file.string()));
   if (!f.open(QIODevice::ReadOnly)) return {};
@@ -62,7 +59,7 @@ std::string sceneFileText(const Scene& scene, const SceneState& state, const std
   // Keep the structure of an opened scene file (name, description, pins, colliders); a bare pattern starts empty.
   QJsonObject root;
   if (!state.input.empty() && !isPatternFile(state.input)) root = readObject(state.input);
-  for (const char* section : kSettingSections) root.remove(section);
+  for (const std::string& section : sceneSettingSections()) root.remove(QString::fromStdString(section));
   root.remove("pattern");
 
   root["pattern"] = relativePath(scene.patternFile, target);

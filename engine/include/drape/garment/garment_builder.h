@@ -20,6 +20,8 @@ struct MeshingOptions {
   // Per-panel target edge length, metres, by panel name (e.g. finer sleeves); panels not listed use
   // targetEdgeLength. With conforming seams the stitched edges still share the larger of their counts.
   std::map<std::string, double> panelTargetEdgeLength;
+  // Added to every placed position, metres (the scene's placement.translate).
+  Eigen::Vector3d placementOffset = Eigen::Vector3d::Zero();
 };
 
 // Throws InputError naming the pattern file and panel/stitch for: a non-positive target or units_in_meter, a

@@ -86,6 +86,10 @@ struct SceneRequest {
 // Loads and validates everything the scene names; throws InputError naming the file and the element.
 Scene loadScene(const SceneRequest& request);
 
+// The sections of a scene file whose leaves are settings ("mesh": {"target_edge_length": 0.02} is the setting
+// mesh.target_edge_length), in the order the format lists them.
+const std::vector<std::string>& sceneSettingSections();
+
 // True when file holds a sewing pattern (a "pattern" object with panels) rather than a scene.
 bool isPatternFile(const std::filesystem::path& file);
 

@@ -13,16 +13,13 @@
 #include "drape/garment/garment_builder.h"
 #include "drape/pd/preview_settings.h"
 #include "drape/scene/scene.h"
+#include "drape/sim/scene_garment.h"
 #include "drape/sim/snapshot.h"
 
 namespace drape {
 
 enum class StepStatus { Converged, MaxIterations, Diverged, Cancelled };
 const char* toString(StepStatus status);
-
-// The garment meshing the scene's mesh.* settings ask for (target edge length, conforming seams): what Simulation
-// builds, for every other place that meshes the scene's garment (so that vertex counts agree).
-MeshingOptions meshingOptions(const Scene& scene);
 
 // The Courant number the scene's preview softens its fabric to (preview_fabric.h; 0: not softened):
 // solver.preview.courant_limit, or in the full pipeline the softer of it and solver.preview.pipeline_courant_limit.
