@@ -128,6 +128,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
     stats["preview_restarts"] = simulation.previewRestarts();
     stats["preview_courant_number"] = simulation.previewCourantNumber();
     stats["preview_courant_limit"] = simulation.previewCourantLimit();
+    stats["preview_targets_freed"] = simulation.previewTargetsFreed();
     out << simulation.stage() << ": " << status << " after " << simulation.steps() << " steps, " << simulation.time()
         << " s simulated; wrote " << options.output << "\n";
     if (status == "Diverged")

@@ -70,14 +70,16 @@ TEST(PreviewFabric, SoftensOnlyTheFabricsAboveTheLimitToTheLimit) {
 
 // The default scene's t-shirt in cotton shirting (Courant number about 26 at the default preview step), preview
 // alone, stepped to `until` seconds or to its first tear; returns the last step's largest stretch.
-// No retry (solver.preview.retry_courant_limit 0): the preview goes on after its first tear.
+// No retry (solver.preview.retry_courant_limit 0, retry_without_held_targets false): the preview goes on after its
+// first tear.
 double cottonPreviewStretch(const std::string& courantLimit, double until, std::string& failure) {
   SceneRequest request;
   request.input = assetsDir() / "scenes" / "default.json";
   request.fabricPreset = "cotton_shirting";
   request.overrides = {{"solver.stage", "preview"},
                        {"solver.preview.courant_limit", courantLimit},
-                       {"solver.preview.retry_courant_limit", "0"}};
+                       {"solver.preview.retry_courant_limit", "0"},
+                       {"solver.preview.retry_without_held_targets", "false"}};
   Simulation sim(loadScene(request));
   double last = 0.0;
   while (sim.time() < until && sim.previewFailure().empty()) last = sim.step().maxStrain;

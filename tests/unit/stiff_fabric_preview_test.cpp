@@ -2,8 +2,9 @@
 // softens its preview from the start (solver.preview.pipeline_courant_limit) and hands over sooner
 // (softened_max_time). A torn preview at the fabric's own stiffness starts over once, softer
 // (solver.preview.retry_courant_limit): from the placed garment at scene time 0, its fabric softened to the retry's
-// Courant number; a tear after that is given up as before (the drape from the placed garment; a preview alone goes
-// on and says its result is wrong).
+// Courant number. A tear with no softer retry left starts over once more, with the avatar contact targets not held
+// before the garment is sewn (solver.preview.retry_without_held_targets). A tear after that is given up as before
+// (the drape from the placed garment; a preview alone goes on and says its result is wrong).
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -89,7 +90,8 @@ TEST(PreviewRetry, ATearAfterTheRetryIsGivenUp) {
   const Overrides strict = {{"solver.stage", "full"},
                             {"solver.preview.pipeline_courant_limit", "0"},
                             {"solver.preview.failure_strain", "2"},
-                            {"solver.preview.relaxation_time", "0"}};
+                            {"solver.preview.relaxation_time", "0"},
+                            {"solver.preview.retry_without_held_targets", "false"}};
   Simulation sim(defaultTshirt("cotton_shirting", strict));
   const Eigen::MatrixX3d placed = sim.positions();
   sim.step();
@@ -122,11 +124,13 @@ TEST(PreviewRetry, NoRetryWhenOffOrWhenTheFabricIsNotThatStiff) {
   // The default t-shirt in `fabric`, its first step torn (failure strain 200 %, no quasi-static start): given up for
   // the drape from the placed garment, with no retry.
   const auto givenUpAtOnce = [](const char* fabric, const std::pair<std::string, std::string>& setting) {
-    auto sim = std::make_unique<Simulation>(defaultTshirt(fabric, {{"solver.stage", "full"},
-                                                                   {"solver.preview.pipeline_courant_limit", "0"},
-                                                                   {"solver.preview.failure_strain", "2"},
-                                                                   {"solver.preview.relaxation_time", "0"},
-                                                                   setting}));
+    auto sim =
+        std::make_unique<Simulation>(defaultTshirt(fabric, {{"solver.stage", "full"},
+                                                            {"solver.preview.pipeline_courant_limit", "0"},
+                                                            {"solver.preview.failure_strain", "2"},
+                                                            {"solver.preview.relaxation_time", "0"},
+                                                            {"solver.preview.retry_without_held_targets", "false"},
+                                                            setting}));
     sim->step();
     EXPECT_EQ(sim->previewRestarts(), 0) << fabric << ", " << setting.first << " " << setting.second;
     EXPECT_EQ(sim->stage(), "drape") << fabric << ", " << setting.first << " " << setting.second;
@@ -140,6 +144,118 @@ TEST(PreviewRetry, NoRetryWhenOffOrWhenTheFabricIsNotThatStiff) {
   EXPECT_LT(jersey->previewCourantNumber(), 5.0);
   // Already softened to the retry's number by the scene: nothing softer to retry with.
   givenUpAtOnce("cotton_shirting", {"solver.preview.courant_limit", "5"});
+}
+
+// The same first-step tear (failure strain 200 %, no quasi-static start) with both retries on: softer first, then with
+// the contact targets free, then given up. Each restart starts from the placed garment at time 0.
+TEST(PreviewRetry, ATearAfterTheSofterRetryStartsOverWithTargetsFreeThenIsGivenUp) {
+  const Overrides strict = {{"solver.stage", "full"},
+                            {"solver.preview.pipeline_courant_limit", "0"},
+                            {"solver.preview.failure_strain", "2"},
+                            {"solver.preview.relaxation_time", "0"}};
+  Simulation sim(defaultTshirt("cotton_shirting", strict));
+  const Eigen::MatrixX3d placed = sim.positions();
+  sim.step();
+  ASSERT_EQ(sim.previewRestarts(), 1);
+  EXPECT_FALSE(sim.previewTargetsFreed());
+  EXPECT_EQ(sim.previewCourantLimit(), 5.0);
+  sim.step();
+  ASSERT_EQ(sim.previewRestarts(), 2);
+  EXPECT_TRUE(sim.previewTargetsFreed());
+  EXPECT_EQ(sim.previewCourantLimit(), 5.0);  // still softened
+  EXPECT_EQ(sim.stage(), "preview");
+  EXPECT_DOUBLE_EQ(sim.time(), 0.0);
+  EXPECT_EQ((sim.positions() - placed).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_TRUE(contains(sim.previewFailure(), "contact targets not held before it is sewn")) << sim.previewFailure();
+  // An edit that resumes the preview keeps its targets free.
+  const ResumeState from = sim.resumeState();
+  EXPECT_TRUE(from.previewTargetsFreed);
+  Simulation edited(defaultTshirt("cotton_shirting", strict), from);
+  ASSERT_TRUE(edited.resumed());
+  EXPECT_TRUE(edited.previewTargetsFreed());
+  sim.step();
+  EXPECT_EQ(sim.previewRestarts(), 2);
+  EXPECT_EQ(sim.stage(), "drape");
+  EXPECT_TRUE(contains(sim.previewFailure(), "the drape starts from the placed garment")) << sim.previewFailure();
+  EXPECT_DOUBLE_EQ(sim.time(), 0.0);
+  EXPECT_EQ((sim.positions() - placed).cwiseAbs().maxCoeff(), 0.0);
+
+  // Without the softer retry (a jersey shirt, below its Courant number), the first tear frees the targets.
+  Simulation jersey(defaultTshirt("jersey_knit", strict));
+  jersey.step();
+  ASSERT_EQ(jersey.previewRestarts(), 1);
+  EXPECT_TRUE(jersey.previewTargetsFreed());
+  EXPECT_EQ(jersey.previewCourantLimit(), 0.0);
+  // With targets held in every step (hold_contact_targets), freeing them before the sewing would change nothing.
+  Overrides alwaysHeld = strict;
+  alwaysHeld.emplace_back("solver.preview.hold_contact_targets", "true");
+  Simulation held(defaultTshirt("jersey_knit", alwaysHeld));
+  held.step();
+  EXPECT_EQ(held.previewRestarts(), 0);
+  EXPECT_EQ(held.stage(), "drape");
+}
+
+// A tear found in the step that hands over to the drape (max_time reached in the first, unhalved 1/480 s step): the
+// restart drops the drape that step had started, so the preview runs again rather than a drape from the torn state.
+TEST(PreviewRetry, TearInTheHandOverStepStartsThePreviewOverWithoutTheDrape) {
+  Simulation sim(defaultTshirt("jersey_knit", {{"solver.stage", "full"},
+                                               {"solver.preview.failure_strain", "2"},
+                                               {"solver.preview.relaxation_time", "0"},
+                                               {"solver.preview.max_halvings", "0"},
+                                               {"solver.preview.max_time", "0.001"}}));
+  const Eigen::MatrixX3d placed = sim.positions();
+  const StepReport first = sim.step();
+  EXPECT_EQ(first.stage, "preview");
+  EXPECT_GT(first.maxStrain, 2.0);
+  ASSERT_EQ(sim.previewRestarts(), 1);
+  EXPECT_EQ(sim.stage(), "preview");
+  EXPECT_DOUBLE_EQ(sim.time(), 0.0);
+  EXPECT_EQ((sim.positions() - placed).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(sim.resumeState().previewPositions.rows(), 0);
+  EXPECT_EQ(sim.step().stage, "preview");  // the preview's step again, not the drape's
+}
+
+// A preview about to hand over a triangle stretched past solver.preview.handoff_strain (here 50 %; the first, unhalved
+// step's seam closing stretches about 300 %, below the failure strain) starts over once with its targets free; the
+// next such hand-over goes ahead, and the drape starts from the preview's state.
+TEST(PreviewRetry, OverstretchedHandOverStartsOverWithTargetsFreeOnce) {
+  const Overrides firstStepHandsOver = {{"solver.stage", "full"},
+                                        {"solver.preview.failure_strain", "100"},
+                                        {"solver.preview.relaxation_time", "0"},
+                                        {"solver.preview.max_halvings", "0"},
+                                        {"solver.preview.max_time", "0.001"},
+                                        {"solver.preview.handoff_strain", "0.5"}};
+  Simulation sim(defaultTshirt("jersey_knit", firstStepHandsOver));
+  const Eigen::MatrixX3d placed = sim.positions();
+  const StepReport first = sim.step();
+  ASSERT_GT(first.maxStrain, 0.5);
+  ASSERT_EQ(sim.previewRestarts(), 1);
+  EXPECT_TRUE(sim.previewTargetsFreed());
+  EXPECT_EQ(sim.stage(), "preview");
+  EXPECT_DOUBLE_EQ(sim.time(), 0.0);
+  EXPECT_EQ((sim.positions() - placed).cwiseAbs().maxCoeff(), 0.0);
+  const std::string said = sim.previewFailure();
+  EXPECT_TRUE(contains(said, "was to hand over a triangle stretched to")) << said;
+  EXPECT_TRUE(contains(said, "solver.preview.handoff_strain (50 %)")) << said;
+  const StepReport second = sim.step();
+  EXPECT_GT(second.maxStrain, 0.5);
+  EXPECT_EQ(sim.previewRestarts(), 1);
+  EXPECT_EQ(sim.stage(), "drape");
+  EXPECT_GT(sim.time(), 0.0);  // from the preview's state, not the placed garment
+  EXPECT_EQ(sim.resumeState().previewPositions.rows(), sim.garment().vertexCount());
+
+  // Off (0), or with the targets held in every step anyway: it hands over at once.
+  for (const auto& setting : {std::pair<std::string, std::string>{"solver.preview.handoff_strain", "0"},
+                              {"solver.preview.retry_without_held_targets", "false"},
+                              {"solver.preview.hold_contact_targets", "true"}}) {
+    Overrides o = firstStepHandsOver;
+    o.push_back(setting);
+    Simulation direct(defaultTshirt("jersey_knit", o));
+    direct.step();
+    EXPECT_EQ(direct.previewRestarts(), 0) << setting.first;
+    EXPECT_EQ(direct.stage(), "drape") << setting.first;
+    EXPECT_GT(direct.time(), 0.0) << setting.first;
+  }
 }
 
 TEST(PipelineSoftening, FullPipelineSoftensAStiffFabricFromTheStartAndHandsOverSooner) {

@@ -109,6 +109,13 @@ const std::vector<SettingSpec>& Settings::specs() {
        "a preview that tears (solver.preview.failure_strain) with a fabric whose Courant number is above this (see "
        "courant_limit, which must be 0 or above this) starts over once from the placed garment with courant_limit at "
        "this, before a tear gives it up (0: never)", 0, 1e6},
+      {"solver.preview.retry_without_held_targets", T::Boolean, "true", "",
+       "a preview that tears when no softer retry applies (retry_courant_limit) starts over once from the placed "
+       "garment with its avatar contact targets never held before the garment is sewn (hold_targets_step 0): held "
+       "targets can lock a seam pulled across the body"},
+      {"solver.preview.handoff_strain", T::Number, "2", "",
+       "a full pipeline's preview about to hand over a triangle stretched past this (2 = 3x its rest length) starts "
+       "over as after a tear when retry_without_held_targets still applies; else it hands over (0: never)", 0, 1e3},
       {"solver.preview.sd_iterations", T::Integer, "1", "", "dual steepest-descent updates before PCG (eq. 24)", 1,
        1000},
       {"solver.preview.ccd", T::Boolean, "true", "", "CCD of the vertex paths against the avatar"},

@@ -128,6 +128,7 @@ void Simulation::build(const ResumeState* from) {
     // state has not seen the fabric's own stiffness.
     if (from->previewCourantLimit > 0.0 && (m_courantLimit <= 0.0 || m_courantLimit > from->previewCourantLimit))
       m_courantLimit = from->previewCourantLimit;
+    m_targetsFreed = from->previewTargetsFreed;
     m_solver->preview = std::make_unique<pd::PreviewSolver>(model, previewSettings(), m_solver->collider);
   } else if (from && from->stage == "drape") {
     m_resumed = from->previewPositions.rows() > 0;  // else the drape had started from the placed garment
@@ -152,12 +153,18 @@ void Simulation::build(const ResumeState* from) {
 pd::PreviewSettings Simulation::previewSettings() const {
   pd::PreviewSettings settings = previewSettingsFrom(m_scene);
   settings.courantLimit = m_courantLimit;
+  if (m_targetsFreed) settings.holdTargetsStep = 0.0;
   return settings;
 }
 
 void Simulation::startPreview() {
   m_solver->assembly.reset();
   m_solver->preview.reset();
+  // A tear found in the step that handed over has already started the drape: starting over drops it.
+  m_solver->newton.reset();
+  m_solver->previewPositions.resize(0, 3);
+  m_solver->previewTime = 0.0;
+  m_atRest = false;
   m_solver->previewOffset = 0.0;
   m_restSince = -1.0;
   m_overshootSince = -1.0;
@@ -279,22 +286,30 @@ double Simulation::retryCourantLimit() const {
   return m_courantNumber > retry ? retry : 0.0;  // else softening to it would change nothing
 }
 
+bool Simulation::retriesUnheld() const {
+  const Settings& s = m_scene.settings;
+  return !m_targetsFreed && s.flag("solver.preview.retry_without_held_targets") &&
+         s.number("solver.preview.hold_targets_step") > 0.0 && !s.flag("solver.preview.hold_contact_targets");
+}
+
+std::string Simulation::stretchedTriangle(const StepReport& report, const Eigen::MatrixX3d& x) const {
+  const int t = report.maxStrainTriangle;
+  if (t < 0 || t >= m_garment.triangles.rows()) return "";
+  const Eigen::Vector3d centre =
+      (x.row(m_garment.triangles(t, 0)) + x.row(m_garment.triangles(t, 1)) + x.row(m_garment.triangles(t, 2))) / 3.0;
+  const int panel = t < m_garment.trianglePanel.size() ? m_garment.trianglePanel[t] : -1;
+  const std::string name =
+      panel >= 0 && panel < static_cast<int>(m_garment.panelNames.size()) ? m_garment.panelNames[panel] : "?";
+  char at[200];
+  std::snprintf(at, sizeof at, " (triangle %d of panel %s, at x %.3f, y %.3f, z %.3f m)", t, name.c_str(), centre.x(),
+                centre.y(), centre.z());
+  return at;
+}
+
 std::string Simulation::tearReason(const StepReport& report, const Eigen::MatrixX3d& x, TearOutcome then) const {
   const double limit = m_scene.settings.number("solver.preview.failure_strain");
   if (limit <= 0.0 || report.maxStrain <= limit) return "";
-  std::string where;
-  const int t = report.maxStrainTriangle;
-  if (t >= 0 && t < m_garment.triangles.rows()) {
-    const Eigen::Vector3d centre =
-        (x.row(m_garment.triangles(t, 0)) + x.row(m_garment.triangles(t, 1)) + x.row(m_garment.triangles(t, 2))) / 3.0;
-    const int panel = t < m_garment.trianglePanel.size() ? m_garment.trianglePanel[t] : -1;
-    const std::string name =
-        panel >= 0 && panel < static_cast<int>(m_garment.panelNames.size()) ? m_garment.panelNames[panel] : "?";
-    char at[200];
-    std::snprintf(at, sizeof at, " (triangle %d of panel %s, at x %.3f, y %.3f, z %.3f m)", t, name.c_str(),
-                  centre.x(), centre.y(), centre.z());
-    where = at;
-  }
+  const std::string where = stretchedTriangle(report, x);
   const double courant = m_courantNumber;
   std::string next = "the drape starts from the placed garment";
   if (then == TearOutcome::PreviewGoesOn)
@@ -307,12 +322,17 @@ std::string Simulation::tearReason(const StepReport& report, const Eigen::Matrix
                   courant, retryCourantLimit());
     next = over;
   }
+  if (then == TearOutcome::PreviewStartsOverUnheld)
+    next =
+        "the preview starts over from the placed garment with its contact targets not held before it is sewn "
+        "(solver.preview.retry_without_held_targets)";
   char message[600];
   std::snprintf(message, sizeof message, "the preview stretched a triangle to %.0f %% at t = %.3f s%s; %s",
                 100.0 * report.maxStrain, report.time, where.c_str(), next.c_str());
   std::string said = message;
   // A fabric this stiff for its mesh and preview step closed the seams through the body (preview_fabric.h).
-  if (then != TearOutcome::PreviewStartsOver && m_courantLimit <= 0.0 && courant > kSoftenedCourant) {
+  const bool startsOver = then == TearOutcome::PreviewStartsOver || then == TearOutcome::PreviewStartsOverUnheld;
+  if (!startsOver && m_courantLimit <= 0.0 && courant > kSoftenedCourant) {
     std::snprintf(message, sizeof message,
                   " (the fabric is stiff for this mesh and preview step, Courant number %.1f: "
                   "--set solver.preview.courant_limit=%g softens the preview's fabric)",
@@ -345,11 +365,15 @@ void Simulation::failPreviewIfTorn(const StepReport& report, const Eigen::Matrix
   const bool previewAlone = m_scene.settings.text("solver.stage") == "preview";
   if (previewAlone && m_previewWrong) return;  // said once, at the first torn step
   const double retry = retryCourantLimit();
-  const TearOutcome then = retry > 0.0    ? TearOutcome::PreviewStartsOver
-                           : previewAlone ? TearOutcome::PreviewGoesOn
-                                          : TearOutcome::DrapeFromPlaced;
+  const TearOutcome then = retry > 0.0       ? TearOutcome::PreviewStartsOver
+                           : retriesUnheld() ? TearOutcome::PreviewStartsOverUnheld
+                           : previewAlone    ? TearOutcome::PreviewGoesOn
+                                             : TearOutcome::DrapeFromPlaced;
   std::string reason = tearReason(report, x, then);
-  if (reason.empty()) return;
+  if (reason.empty()) {
+    restartOverstretchedHandOver(report, x);
+    return;
+  }
   m_previewFailure = std::move(reason);
   switch (then) {
     case TearOutcome::PreviewGoesOn: m_previewWrong = true; break;
@@ -362,7 +386,28 @@ void Simulation::failPreviewIfTorn(const StepReport& report, const Eigen::Matrix
       ++m_previewRestarts;
       startPreview();
       break;
+    case TearOutcome::PreviewStartsOverUnheld:
+      m_targetsFreed = true;
+      ++m_previewRestarts;
+      startPreview();
+      break;
   }
+}
+
+void Simulation::restartOverstretchedHandOver(const StepReport& report, const Eigen::MatrixX3d& x) {
+  const double limit = m_scene.settings.number("solver.preview.handoff_strain");
+  const bool handedOver = m_solver->newton && m_solver->previewPositions.rows() > 0;  // in this step
+  if (!handedOver || limit <= 0.0 || report.maxStrain <= limit || !retriesUnheld()) return;
+  char message[600];
+  std::snprintf(message, sizeof message,
+                "the preview was to hand over a triangle stretched to %.0f %% at t = %.3f s%s, past "
+                "solver.preview.handoff_strain (%.0f %%); the preview starts over from the placed garment with its "
+                "contact targets not held before it is sewn (solver.preview.retry_without_held_targets)",
+                100.0 * report.maxStrain, report.time, stretchedTriangle(report, x).c_str(), 100.0 * limit);
+  m_previewFailure = message;
+  m_targetsFreed = true;
+  ++m_previewRestarts;
+  startPreview();
 }
 
 void Simulation::setDrag(int vertex, const Eigen::Vector3d& target) {
@@ -391,6 +436,7 @@ ResumeState Simulation::resumeState() const {
   r.previewPositions = m_solver->previewPositions;
   r.previewTime = m_solver->previewTime;
   r.previewCourantLimit = m_courantLimit;
+  r.previewTargetsFreed = m_targetsFreed;
   return r;
 }
 

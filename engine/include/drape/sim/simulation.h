@@ -67,6 +67,7 @@ struct ResumeState {
                                       // started from the placed garment
   double previewTime = 0.0;          // scene time of previewPositions, s
   double previewCourantLimit = 0.0;  // the Courant number the preview's fabric was softened to (0: not softened)
+  bool previewTargetsFreed = false;  // the preview started over with contact targets not held before it was sewn
 };
 
 class Simulation {
@@ -123,12 +124,18 @@ class Simulation {
   //
   // A tear with a fabric stiffer than solver.preview.retry_courant_limit first starts the preview over from the
   // placed garment at scene time 0, its fabric softened to that Courant number (solver.preview.courant_limit); this
-  // then says so, and previewRestarts() counts it. Only a tear after that is given up as above.
+  // then says so, and previewRestarts() counts it. A tear with no such retry left starts the preview over in the same
+  // way once with its avatar contact targets never held before the garment is sewn
+  // (solver.preview.retry_without_held_targets; previewTargetsFreed()), and so does a full pipeline's preview about
+  // to hand over a triangle stretched past solver.preview.handoff_strain. Only a tear after that is given up as
+  // above.
   const std::string& previewFailure() const { return m_previewFailure; }
   int previewRestarts() const { return m_previewRestarts; }
   // The Courant number the preview's fabric is softened to: previewCourantLimitOf(scene()), or the retry's after a
   // restart; 0: the fabric's own stiffness.
   double previewCourantLimit() const { return m_courantLimit; }
+  // The preview started over with solver.preview.hold_targets_step 0 after a tear.
+  bool previewTargetsFreed() const { return m_targetsFreed; }
   // The fabric's own Courant number at the preview's time step (pd::courantNumber).
   double previewCourantNumber() const { return m_courantNumber; }
   // Contact thickness the solvers use, metres (contact.thickness, else the thickest fabric, at least 2 mm).
@@ -149,16 +156,18 @@ class Simulation {
   bool m_previewWrong = false;  // preview alone: a tear after which it went on has been said
   int m_previewRestarts = 0;
   double m_courantLimit = 0.0;     // previewCourantLimit()
+  bool m_targetsFreed = false;     // previewTargetsFreed()
   double m_courantNumber = 0.0;    // previewCourantNumber()
   double m_overshootSince = -1.0;  // preview: scene time since which the stretch has been extreme (-1: it is not)
   int m_dragVertex = -1;
   Eigen::Vector3d m_dragTarget = Eigen::Vector3d::Zero();
 
   // What follows a torn preview (tearReason).
-  enum class TearOutcome { DrapeFromPlaced, PreviewGoesOn, PreviewStartsOver };
+  enum class TearOutcome { DrapeFromPlaced, PreviewGoesOn, PreviewStartsOver, PreviewStartsOverUnheld };
 
   void build(const ResumeState* from);
-  // The scene's preview settings with the fabric softened to previewCourantLimit().
+  // The scene's preview settings with the fabric softened to previewCourantLimit(), and without held contact targets
+  // before the garment is sewn after previewTargetsFreed().
   pd::PreviewSettings previewSettings() const;
   // Starts the preview (over) from the placed garment at scene time 0: on the assembly mesh when startAssembly()
   // does, else on the garment's own.
@@ -166,6 +175,16 @@ class Simulation {
   // The Courant limit a torn preview starts over with: solver.preview.retry_courant_limit when it is on, the
   // preview is not that soft yet and the fabric is stiffer than it; else 0.
   double retryCourantLimit() const;
+  // A torn preview with no softer retry left starts over with its contact targets free before it is sewn:
+  // solver.preview.retry_without_held_targets is on, it has not done so yet, and the preview holds targets before
+  // it is sewn (hold_targets_step above 0, hold_contact_targets off).
+  bool retriesUnheld() const;
+  // " (triangle t of panel p, at x .., y .., z .. m)": report's most stretched triangle, its centre in x.
+  std::string stretchedTriangle(const StepReport& report, const Eigen::MatrixX3d& x) const;
+  // A step that handed over to the drape a triangle stretched past solver.preview.handoff_strain starts the preview
+  // over with its contact targets free, when retriesUnheld() (the held targets locked a seam: the denim GarmentCode
+  // shirt handed over at 262 %, and its drape took twice Newton's alone; docs/BENCHMARKS.md, stop 39).
+  void restartOverstretchedHandOver(const StepReport& report, const Eigen::MatrixX3d& x);
   // The longest preview stage: solver.preview.max_time, or in the full pipeline softened_max_time when that is
   // shorter and the preview's fabric is softened (previewCourantLimit() below the fabric's Courant number).
   double previewMaxTime() const;
