@@ -365,14 +365,15 @@ void Simulation::failPreviewIfTorn(const StepReport& report, const Eigen::Matrix
   const bool previewAlone = m_scene.settings.text("solver.stage") == "preview";
   if (previewAlone && m_previewWrong) return;  // said once, at the first torn step
   const double retry = retryCourantLimit();
-  const TearOutcome then = retry > 0.0       ? TearOutcome::PreviewStartsOver
-                           : retriesUnheld() ? TearOutcome::PreviewStartsOverUnheld
-                           : previewAlone    ? TearOutcome::PreviewGoesOn
-                                             : TearOutcome::DrapeFromPlaced;
+  TearOutcome then = retry > 0.0       ? TearOutcome::PreviewStartsOver
+                     : retriesUnheld() ? TearOutcome::PreviewStartsOverUnheld
+                     : previewAlone    ? TearOutcome::PreviewGoesOn
+                                       : TearOutcome::DrapeFromPlaced;
   std::string reason = tearReason(report, x, then);
-  if (reason.empty()) {
-    restartOverstretchedHandOver(report, x);
-    return;
+  if (reason.empty()) {  // not torn; a hand-over stretched this far starts over as a tear would
+    reason = overstretchedHandOverReason(report, x);
+    if (reason.empty()) return;
+    then = TearOutcome::PreviewStartsOverUnheld;
   }
   m_previewFailure = std::move(reason);
   switch (then) {
@@ -394,20 +395,18 @@ void Simulation::failPreviewIfTorn(const StepReport& report, const Eigen::Matrix
   }
 }
 
-void Simulation::restartOverstretchedHandOver(const StepReport& report, const Eigen::MatrixX3d& x) {
-  const double limit = m_scene.settings.number("solver.preview.handoff_strain");
+std::string Simulation::overstretchedHandOverReason(const StepReport& report, const Eigen::MatrixX3d& x) const {
   const bool handedOver = m_solver->newton && m_solver->previewPositions.rows() > 0;  // in this step
-  if (!handedOver || limit <= 0.0 || report.maxStrain <= limit || !retriesUnheld()) return;
+  if (!handedOver) return "";
+  const double limit = m_scene.settings.number("solver.preview.handoff_strain");
+  if (limit <= 0.0 || report.maxStrain <= limit || !retriesUnheld()) return "";
   char message[600];
   std::snprintf(message, sizeof message,
                 "the preview was to hand over a triangle stretched to %.0f %% at t = %.3f s%s, past "
                 "solver.preview.handoff_strain (%.0f %%); the preview starts over from the placed garment with its "
                 "contact targets not held before it is sewn (solver.preview.retry_without_held_targets)",
                 100.0 * report.maxStrain, report.time, stretchedTriangle(report, x).c_str(), 100.0 * limit);
-  m_previewFailure = message;
-  m_targetsFreed = true;
-  ++m_previewRestarts;
-  startPreview();
+  return message;
 }
 
 void Simulation::setDrag(int vertex, const Eigen::Vector3d& target) {
