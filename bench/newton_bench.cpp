@@ -16,8 +16,8 @@
 // it is no feature here: measure it with --set.)
 // Configurations: a base "on" (every speed-up on) or "off" (all off) followed by "+X" / "-X" modifiers, e.g.
 // "off+bending+map", "on-reorder". X in {bending, map, parallel, fold, reorder, fused, warm, mixed, reuse, coarse,
-// guess, majorizer}. "all" = off, on and every on-X; "table7" = the cumulative sequence off, off+bending, ... , on
-// (newton-drape-pizana Table 7; the features after "coarse" are not in the paper either).
+// coupled, guess, majorizer}. "all" = off, on and every on-X; "table7" = the cumulative sequence off,
+// off+bending, ..., on (newton-drape-pizana Table 7; the features after "coarse" are not in the paper either).
 #include <sys/resource.h>
 
 #include <chrono>
@@ -69,6 +69,8 @@ const std::vector<Feature>& features() {
       {"coarse", "solver.cg.coarse_aggregate",
        [](NewtonSettings& s, bool on) { s.coarseAggregate = on ? g_coarseAggregate : 0; },
        [](bool on) { return std::to_string(on ? g_coarseAggregate : 0); }},
+      {"coupled", "solver.cg.coupled_groups", [](NewtonSettings& s, bool on) { s.coupledThreshold = on ? 0.6 : 0.0; },
+       [](bool on) { return std::string(on ? "0.6" : "0"); }},
       {"guess", "solver.newton.relaxation_guess", [](NewtonSettings& s, bool on) { s.relaxationGuess = on; }},
       // Friction is a contact term: the cloth mode (no contact) has none to switch.
       {"majorizer", "contact.friction_majorizer", [](NewtonSettings&, bool) {}},

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "drape/newton/coarse_space.h"
+#include "drape/newton/coupled_groups.h"
 
 namespace drape::newton {
 namespace {
@@ -252,11 +253,12 @@ struct CoarseCorrection {
 };
 
 // PCG on storage-ordered vectors; x in/out (initial guess when warm). Returns the iteration count. coarse: the
-// two-level correction added to z = inv r (nullptr or not ready: one level).
+// two-level correction added to z = inv r (nullptr or not ready: one level); groups: rows whose z comes from their
+// group's inverse instead of inv (nullptr: none).
 template <typename S>
 int fusedPcg(const StorageMatrix<S>& a, const std::vector<StoredBlock<S>>& inv,
              const Eigen::Matrix<S, Eigen::Dynamic, 1>& b, Eigen::Matrix<S, Eigen::Dynamic, 1>& x, double tol,
-             int maxIt, bool warm, const CoarseSpace* coarse) {
+             int maxIt, bool warm, const CoarseSpace* coarse, const CoupledGroups* groups) {
   using Vec = Eigen::Matrix<S, Eigen::Dynamic, 1>;
   const int n = a.n;
   CoarseCorrection<S> cc(coarse);
@@ -283,6 +285,10 @@ int fusedPcg(const StorageMatrix<S>& a, const std::vector<StoredBlock<S>>& inv,
   });
   double rz = sums(0);
   if (sums(1) <= stop2) return 0;
+  if (groups) {
+    rz += groups->apply<S>(r, z);
+    p = z;
+  }
   if (cc.space) {
     rz += cc.update(r, n);
     forRows(n, [&](int r0, int r1) {
@@ -316,6 +322,7 @@ int fusedPcg(const StorageMatrix<S>& a, const std::vector<StoredBlock<S>>& inv,
     else
       pass();
     double rzNew = sums(0);
+    if (groups) rzNew += groups->apply<S>(r, z);
     ++it;
     if (sums(1) <= stop2) break;
     if (cc.space) {
@@ -383,7 +390,9 @@ LinearSolveResult fusedSolve(const BlockMatrix& a, const Eigen::VectorXd& b, Eig
   const std::vector<StoredBlock<S>>& inv = *invStore;
   Vec bs = bi.cast<S>(), xs;
   if (warm) xs = xi.cast<S>();
-  result.iterations = fusedPcg<S>(m, inv, bs, xs, options.tolerance, options.maxIterations, warm, options.coarse);
+  const CoupledGroups* coupled = options.preconditioner == Preconditioner::BlockJacobi ? options.coupled : nullptr;
+  result.iterations = fusedPcg<S>(m, inv, bs, xs, options.tolerance, options.maxIterations, warm, options.coarse,
+                                  coupled && !coupled->empty() ? coupled : nullptr);
   xi = xs.template cast<double>();
   if (!xi.allFinite()) return result;
   if (options.trueResidual) {

@@ -8,6 +8,7 @@
 #include "drape/core/percentile.h"
 #include "drape/newton/body_forces.h"
 #include "drape/newton/coarse_space.h"
+#include "drape/newton/coupled_groups.h"
 #include "drape/newton/hinge_bending.h"
 #include "drape/newton/springs.h"
 #include "drape/newton/strain_rate_damping.h"
@@ -93,6 +94,8 @@ NewtonSolver::NewtonSolver(ClothModel model, NewtonSettings settings, std::vecto
   m_matrix.build(n, couplings, m_settings.reorderDofs);
   if (m_settings.coarseAggregate > 1 && m_settings.linear.fusedKernels)
     m_coarse = std::make_unique<CoarseSpace>(m_matrix, m_settings.coarseAggregate);
+  m_coupled = std::make_unique<CoupledGroups>();
+  m_useCoupled = m_settings.coupledFromIterations <= 0;
   m_useCoarse = m_settings.coarseFromIterations <= 0;
   m_h = m_settings.relaxation ? m_settings.hMax / m_settings.relaxationStepDivisor : m_settings.hMax;
   if (m_settings.startStep > 0.0) m_h = std::min(m_h, m_settings.startStep);
@@ -185,7 +188,7 @@ bool NewtonSolver::assembleFirstIteration(const Eigen::VectorXd& x, double h, bo
       if (!recorded(k)) m_energies[k]->addGuessGradient(x, g);
     ++m_elasticHessianAge;
   } else {
-    m_coarseStale = true;
+    m_coarseStale = m_coupledStale = true;
     m_matrix.setZero();
     for (size_t k = 0; k < m_elasticCount; ++k) {
       if (recorded(k))
@@ -201,7 +204,7 @@ bool NewtonSolver::assembleFirstIteration(const Eigen::VectorXd& x, double h, bo
 }
 
 void NewtonSolver::assembleHessian(const Eigen::VectorXd& x, double h) {
-  m_coarseStale = true;
+  m_coarseStale = m_coupledStale = true;
   m_matrixReady = false;
   m_matrix.setZero();
   for (size_t k = 0; k < m_elasticCount; ++k) m_energies[k]->addHessian(x, m_matrix);
@@ -253,14 +256,26 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
       m_pcgCache.valid = false;
     }
     // Contact, friction and the drag spring add fresh blocks in every iteration; without them the coarse factor
-    // lives as long as the elastic Hessian (hessianReuseSteps), and so does the matrix itself.
+    // and the coupled groups' inverses live as long as the elastic Hessian (hessianReuseSteps), and so does the
+    // matrix.
     const bool useCoarse = m_coarse && m_useCoarse;
+    const bool useGroups = m_settings.coupledThreshold > 0.0 && m_settings.linear.fusedKernels && m_useCoupled;
     const bool freshTerms = hasFreshTerms();
     m_matrixReady = !freshTerms && m_settings.hessianReuseSteps > 0;
     if (useCoarse && (m_coarseStale || m_coarseH != h || freshTerms)) {
       m_coarse->factorize(m_matrix);
       m_coarseStale = false;
       m_coarseH = h;
+    }
+    // The groups are found once per step size (a stitch stays a stitch, and scanning every block for them costs more
+    // than a short step's solve saves); their inverses follow the matrix.
+    if (useGroups && m_coupledH != h) {
+      *m_coupled = CoupledGroups(m_matrix, m_settings.coupledThreshold);
+      m_coupledH = h;
+      m_coupledStale = false;
+    } else if (useGroups && (m_coupledStale || freshTerms)) {
+      m_coupled->refresh(m_matrix);
+      m_coupledStale = false;
     }
     report.hessianSeconds += secondsSince(t0);
     t0 = Clock::now();
@@ -273,6 +288,7 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
       dv.resize(0);
     LinearSolveOptions linear = m_settings.linear;
     linear.coarse = useCoarse ? m_coarse.get() : nullptr;
+    linear.coupled = useGroups && !m_coupled->empty() ? m_coupled.get() : nullptr;
     linear.trueResidual = false;
     linear.cache = m_matrixReady ? &m_pcgCache : nullptr;
     if (m_settings.cgForcing > 0.0 && rn > 0.0)
@@ -282,12 +298,19 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
     ++report.newtonIterations;
     report.cgIterations += ls.iterations;
     report.coarseSolves += linear.coarse != nullptr;
-    // The coarse level pays for itself only on solves that need many PCG iterations (stiff fabric, fine mesh).
+    report.coupledSolves += linear.coupled != nullptr;
+    // The coarse level and the coupled groups pay for themselves only on solves that need many PCG iterations
+    // (stiff fabric, fine mesh, long steps).
     const int from = m_settings.coarseFromIterations;
     if (!useCoarse && ls.iterations >= from)
       m_useCoarse = true;
     else if (useCoarse && ls.iterations < from / 4)
       m_useCoarse = false;
+    const int coupledFrom = m_settings.coupledFromIterations;
+    if (!m_useCoupled && ls.iterations >= coupledFrom)
+      m_useCoupled = true;
+    else if (useGroups && ls.iterations < coupledFrom / 2)
+      m_useCoupled = false;
     if (!ls.ok) return NewtonStatus::Diverged;
     // Backtracking line search halving the step until the residual decreases (Algorithm 1, lines 15-27).
     bool accepted = false;

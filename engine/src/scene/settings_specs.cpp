@@ -171,6 +171,12 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"solver.cg.coarse_from_iterations", T::Integer, "30", "",
        "two-level PCG from a solve needing this many block-Jacobi iterations (until below a quarter; 0: always)", 0,
        1e6},
+      {"solver.cg.coupled_groups", T::Number, "0.6", "",
+       "block-Jacobi inverts up to four vertices as one block where the matrix couples them at least this strongly "
+       "relative to their diagonal blocks (a stitch's two ends; fused PCG; 0: off)", 0, 1},
+      {"solver.cg.coupled_from_iterations", T::Integer, "60", "",
+       "coupled groups from a solve needing this many PCG iterations (until one with them needs fewer than half; 0: "
+       "always)", 0, 1e6},
       {"solver.cg.fused_kernels", T::Boolean, "true", "",
        "fused parallel block PCG (one pass per phase, deterministic TBB reductions); false: plain Eigen PCG"},
       {"solver.newton.reorder_dofs", T::Boolean, "true", "", "Reverse Cuthill-McKee order of the matrix rows (6.4)"},

@@ -7,6 +7,7 @@
 namespace drape::newton {
 
 class CoarseSpace;
+class CoupledGroups;
 
 enum class Preconditioner { None, Diagonal, BlockJacobi, IncompleteCholesky };
 enum class LinearSolverKind { Pcg, Cholmod };
@@ -41,6 +42,9 @@ struct LinearSolveOptions {
   // is added to the Diagonal or BlockJacobi preconditioner of the fused PCG; ignored by the other paths. nullptr:
   // one level.
   const CoarseSpace* coarse = nullptr;
+  // Coupled groups of this matrix (coupled_groups.h): their rows take the inverse of the group's submatrix instead
+  // of block-Jacobi's blocks (fused PCG with BlockJacobi only). nullptr: none.
+  const CoupledGroups* coupled = nullptr;
   // Compute LinearSolveResult::relativeResidual (one more product with A, in double). The Newton solver judges a
   // step by its own residual and turns this off.
   bool trueResidual = true;

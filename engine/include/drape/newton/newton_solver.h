@@ -91,10 +91,19 @@ struct NewtonSettings {
   // block-Jacobi alone, until a two-level solve needs fewer than a quarter of it (0: always). On a soft garment
   // with contact (the default scene: ~20 iterations per step) its cost per solve outweighs the iterations saved.
   int coarseFromIterations = 30;
+  // Coupled groups (coupled_groups.h; not in the paper): vertices the matrix couples at least this strongly
+  // (relative to their diagonal blocks), such as a stitch's two ends, are preconditioned as one block of up to four
+  // vertices. 0 = off (block-Jacobi alone, the paper). They are used from the solve after one that needed at least
+  // coupledFromIterations PCG iterations until one with them needs fewer than half of that (0: always): at the
+  // drape's long steps after the preview (a median of ~100 iterations per solve on the t-shirts) they halve the
+  // iterations; at h = 1 ms (~20-40) finding and refreshing them costs what they save.
+  double coupledThreshold = 0.6;
+  int coupledFromIterations = 60;
 };
 
 class PinSprings;
 class CoarseSpace;
+class CoupledGroups;
 
 enum class NewtonStatus { Converged, MaxIterations, Diverged, Cancelled };
 const char* toString(NewtonStatus status);
@@ -120,6 +129,7 @@ struct NewtonStepReport {
   bool hessianReused = false;  // the first iteration solved with a reused elastic Hessian (hessianReuseSteps)
   int recordedGradients = 0;   // energies whose first gradient came from the last step's pass (stepStartGradients)
   int coarseSolves = 0;        // linear solves with the two-level preconditioner (coarseAggregate)
+  int coupledSolves = 0;       // linear solves with coupled groups (coupledThreshold)
 };
 
 class NewtonSolver {
@@ -214,6 +224,12 @@ class NewtonSolver {
   bool m_coarseStale = true;
   bool m_useCoarse = false;  // coarseFromIterations: the last solves needed many iterations
   double m_coarseH = 0.0;
+  // Coupled groups (settings.coupledThreshold > 0): the h they were found at (0: none yet), whether m_matrix's
+  // static values changed since their inverses were computed, and whether the last solves needed many iterations.
+  std::unique_ptr<CoupledGroups> m_coupled;
+  double m_coupledH = 0.0;
+  bool m_coupledStale = true;
+  bool m_useCoupled = false;
   std::atomic<bool> m_cancel{false};
 };
 
