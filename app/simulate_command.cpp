@@ -36,6 +36,8 @@ nlohmann::json stepRecord(const StepReport& r) {
     j["gradient_time_s"] = r.gradientTime;
     j["linear_solve_time_s"] = r.linearSolveTime;
     j["hessian_reused"] = r.hessianReused;
+    j["coarse_solves"] = r.coarseSolves;
+    j["coupled_solves"] = r.coupledSolves;
   }
   return j;
 }

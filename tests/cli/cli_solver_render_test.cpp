@@ -1,6 +1,7 @@
 // drape --simulate (Newton drape), --render and --bench end to end through the executable.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -50,6 +51,33 @@ TEST(CliSimulate, DrapeWritesGarmentAndPerStepStats) {
   EXPECT_GT(reused, 0);
   EXPECT_LT(reused, static_cast<int>(j.at("per_step").size()));
   EXPECT_NE(readWhole(obj).find("\nf "), std::string::npos);
+}
+
+// Which drape solves used the two-level PCG and the coupled groups: with both engaged from the first solve, every
+// solve uses the coarse level and the stitched default t-shirt's solves find groups; with the groups off, none.
+TEST(CliSimulate, DrapeStatsCountTheSolvesWithEachPreconditionerLevel) {
+  const auto obj = kScratch / "levels.obj";
+  auto counts = [&](const std::string& groups) {
+    const auto stats = kScratch / ("levels-" + groups + ".json");
+    auto r = drape("--simulate " + asset("scenes/default.json") + " --solver drape --max-sim-time 0.03" +
+                   " --set mesh.target_edge_length=0.05 --set solver.cg.coarse_from_iterations=0" +
+                   " --set solver.cg.coupled_from_iterations=0 --set solver.cg.coupled_groups=" + groups + " -o " +
+                   quote(obj.string()) + " --stats " + quote(stats.string()));
+    EXPECT_EQ(r.exitCode, 0) << r.err << r.out;
+    const auto j = nlohmann::json::parse(readWhole(stats));
+    std::array<int, 3> n{};  // Newton iterations (one solve each), coarse solves, coupled solves
+    for (const auto& s : j.at("per_step")) {
+      const int iterations = s.at("iterations"), coarse = s.at("coarse_solves"), coupled = s.at("coupled_solves");
+      EXPECT_EQ(coarse, iterations);
+      EXPECT_LE(coupled, iterations);
+      n[0] += iterations, n[1] += coarse, n[2] += coupled;
+    }
+    return n;
+  };
+  const std::array<int, 3> on = counts("0.6"), off = counts("0");
+  EXPECT_GT(on[2], on[0] / 2) << "coupled solves " << on[2] << " of " << on[0];
+  EXPECT_EQ(off[2], 0);
+  EXPECT_GT(off[1], 0);
 }
 
 TEST(CliSimulate, StepLimitIsReportedAsSuch) {

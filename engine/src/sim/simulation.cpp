@@ -567,6 +567,8 @@ StepReport Simulation::step() {
     report.gradientTime = r.gradientSeconds;
     report.linearSolveTime = r.linearSolveSeconds;
     report.hessianReused = r.hessianReused;
+    report.coarseSolves = r.coarseSolves;
+    report.coupledSolves = r.coupledSolves;
     report.splits = r.splits;
     report.residual = r.residual;
     report.kineticEnergy = r.kineticPercentile;

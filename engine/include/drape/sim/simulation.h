@@ -51,6 +51,8 @@ struct StepReport {
   double gradientTime = 0.0;
   double linearSolveTime = 0.0;
   bool hessianReused = false;  // drape: the first Newton iteration solved with an earlier step's elastic Hessian
+  int coarseSolves = 0;        // drape: linear solves with the two-level PCG (solver.cg.coarse_aggregate)
+  int coupledSolves = 0;       // drape: linear solves with coupled groups (solver.cg.coupled_groups)
   bool atRest = false;         // early stop reached
 };
 
