@@ -4,9 +4,10 @@
 // together keeps the stitch's stiffness in the preconditioned system and the PCG spends its iterations on it.
 // Preconditioning such a group by the inverse of its whole (3m x 3m) submatrix removes that mode. The groups are
 // found in the static part of the matrix: a block A_ij joins rows i and j when |tr A_ij| >= threshold
-// sqrt(tr A_ii tr A_jj). The trace measures a coupling in all three directions: a stitch (k I) couples a pair at
-// about 0.95 and the ends of a three-vertex chain at 0.7, a membrane edge (stiff along the edge only) its vertices
-// at 0.15-0.35. refresh() recomputes the groups' inverses, dynamic (contact) entries included.
+// sqrt(tr A_ii tr A_jj). The trace measures a coupling in all three directions: a stiff stitch (k I) couples a pair
+// near 1 and the ends of a three-vertex chain near 1 / sqrt(2), a membrane edge (stiff along the edge only) its
+// vertices below 0.6 on the meshes measured (docs/ENGINE.md). refresh() recomputes the groups' inverses, dynamic
+// (contact) entries included.
 #pragma once
 
 #include <Eigen/Core>
