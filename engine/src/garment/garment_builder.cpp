@@ -9,6 +9,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "drape/core/disjoint_sets.h"
 #include "drape/core/input_error.h"
 #include "drape/garment/panel_mesher.h"
 #include "drape/pattern/edge_curve.h"
@@ -28,11 +29,6 @@ struct EdgeIndexer {
   }
   int operator()(int panel, int edge) const { return first[panel] + edge; }
 };
-
-int findRoot(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
 
 std::string panelContext(const Pattern& pattern, int p) {
   return pattern.source + ": panel '" + pattern.panels[p].name + "'";

@@ -11,6 +11,7 @@
 #include "drape/collision/aabb.h"
 #include "drape/collision/distance.h"
 #include "drape/collision/self_contact.h"
+#include "drape/core/disjoint_sets.h"
 
 namespace drape::pd {
 namespace {
@@ -38,11 +39,6 @@ bool planeBarycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const 
 std::uint64_t pairKey(int vertex, int triangle, int triangleCount) {
   return static_cast<std::uint64_t>(vertex) * static_cast<std::uint64_t>(triangleCount) +
          static_cast<std::uint64_t>(triangle);
-}
-
-int findRoot(std::vector<int>& parent, int v) {
-  while (parent[v] != v) v = parent[v] = parent[parent[v]];
-  return v;
 }
 
 }  // namespace
