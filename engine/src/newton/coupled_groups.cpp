@@ -6,15 +6,9 @@
 #include <cmath>
 #include <numeric>
 
+#include "drape/core/disjoint_sets.h"
+
 namespace drape::newton {
-namespace {
-
-int findRoot(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
-
-}  // namespace
 
 CoupledGroups::CoupledGroups(const BlockMatrix& a, double threshold, int maxSize) {
   maxSize = std::clamp(maxSize, 2, kMaxSize);
@@ -75,47 +69,47 @@ void CoupledGroups::refresh(const BlockMatrix& a) {
   const int* rowStart = a.rowStarts();
   const int* cols = a.colIndices();
   const std::vector<Eigen::Matrix3d>& blocks = a.blocks();
-  const auto& dynamic = a.dynamicEntries();
-  // Dynamic entries inside a group (contact on a grouped row, cloth-cloth contact between two of its rows).
-  std::vector<std::vector<int>> dynamicIn(count());
-  for (int d = 0; d < static_cast<int>(dynamic.size()); ++d) {
-    const int i = a.internalIndex(dynamic[d].i), j = a.internalIndex(dynamic[d].j);
-    if (m_groupOf[i] >= 0 && m_groupOf[i] == m_groupOf[j]) dynamicIn[m_groupOf[i]].push_back(d);
-  }
-  // Each group's submatrix inverted by Cholesky; pairs, nearly every group, in fixed size. A group whose
-  // submatrix is not positive definite takes block-Jacobi's blocks (the inverse of its diagonal blocks).
-  Eigen::MatrixXd sub;
-  for (int g = 0; g < count(); ++g) {
+  auto submatrix = [this](int g) {
     const int m = m_start[g + 1] - m_start[g];
-    sub.setZero(3 * m, 3 * m);
-    for (int s = 0; s < m; ++s) {
+    return Eigen::Map<Eigen::MatrixXd>(m_inverse.data() + m_inverseAt[g], 3 * m, 3 * m);
+  };
+  // Each group's submatrix in its own slot: the static blocks between its rows, then the dynamic entries between
+  // them (contact on a grouped row, cloth-cloth contact between two of its rows).
+  for (int g = 0; g < count(); ++g) {
+    Eigen::Map<Eigen::MatrixXd> sub = submatrix(g);
+    sub.setZero();
+    for (int s = 0; s < sub.rows() / 3; ++s) {
       const int r = m_rows[m_start[g] + s];
       for (int k = rowStart[r]; k < rowStart[r + 1]; ++k)
         if (m_groupOf[cols[k]] == g) sub.block<3, 3>(3 * s, 3 * m_slot[cols[k]]) = blocks[k];
     }
-    for (int d : dynamicIn[g]) {
-      const auto& e = dynamic[d];
-      const int i = m_slot[a.internalIndex(e.i)], j = m_slot[a.internalIndex(e.j)];
-      sub.block<3, 3>(3 * i, 3 * j) += e.block;
-      if (e.i != e.j) sub.block<3, 3>(3 * j, 3 * i) += e.block.transpose();
-    }
-    double* out = m_inverse.data() + m_inverseAt[g];
+  }
+  for (const auto& e : a.dynamicEntries()) {
+    const int i = a.internalIndex(e.i), j = a.internalIndex(e.j), g = m_groupOf[i];
+    if (g < 0 || m_groupOf[j] != g) continue;
+    Eigen::Map<Eigen::MatrixXd> sub = submatrix(g);
+    sub.block<3, 3>(3 * m_slot[i], 3 * m_slot[j]) += e.block;
+    if (i != j) sub.block<3, 3>(3 * m_slot[j], 3 * m_slot[i]) += e.block.transpose();
+  }
+  // Inverted in place by Cholesky; pairs, nearly every group, in fixed size. A group whose submatrix is not positive
+  // definite takes block-Jacobi's blocks (the inverses of its diagonal blocks).
+  Eigen::MatrixXd sub;
+  for (int g = 0; g < count(); ++g) {
+    Eigen::Map<Eigen::MatrixXd> inverse = submatrix(g);
+    sub = inverse;
     bool good;
-    if (m == 2) {
+    if (sub.rows() == 6) {
       const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(sub);
       good = llt.info() == Eigen::Success;
-      Eigen::Map<Eigen::Matrix<double, 6, 6>> inverse(out);
       if (good) inverse = llt.solve(Eigen::Matrix<double, 6, 6>::Identity());
     } else {
       const Eigen::LLT<Eigen::MatrixXd> llt(sub);
       good = llt.info() == Eigen::Success;
-      if (good) Eigen::Map<Eigen::MatrixXd>(out, 3 * m, 3 * m) = llt.solve(Eigen::MatrixXd::Identity(3 * m, 3 * m));
+      if (good) inverse = llt.solve(Eigen::MatrixXd::Identity(sub.rows(), sub.cols()));
     }
-    good = good && std::all_of(out, out + 9 * m * m, [](double v) { return std::isfinite(v); });
-    if (good) continue;
-    Eigen::Map<Eigen::MatrixXd> inverse(out, 3 * m, 3 * m);
+    if (good && inverse.allFinite()) continue;
     inverse.setZero();
-    for (int s = 0; s < m; ++s) {
+    for (int s = 0; s < sub.rows() / 3; ++s) {
       Eigen::Matrix3d di = sub.block<3, 3>(3 * s, 3 * s).inverse();
       if (!di.allFinite()) di.setIdentity();
       inverse.block<3, 3>(3 * s, 3 * s) = di;
