@@ -74,6 +74,7 @@ const std::vector<Feature>& features() {
       {"guess", "solver.newton.relaxation_guess", [](NewtonSettings& s, bool on) { s.relaxationGuess = on; }},
       // Friction is a contact term: the cloth mode (no contact) has none to switch.
       {"majorizer", "contact.friction_majorizer", [](NewtonSettings&, bool) {}},
+      {"batch", "solver.newton.batched_gradients", [](NewtonSettings& s, bool on) { s.batchedGradients = on; }},
   };
   return list;
 }

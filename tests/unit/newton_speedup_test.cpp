@@ -381,7 +381,7 @@ TEST(NewtonSpeedup, SolverResultsIndependentOfSwitches) {
   for (int config = 0; config < 2; ++config) {
     NewtonSettings s;
     s.relaxation = false;
-    s.closedFormBending = s.cachedBlockMap = s.parallelAssembly = s.foldDissipation = config == 1;
+    s.closedFormBending = s.cachedBlockMap = s.parallelAssembly = s.foldDissipation = s.batchedGradients = config == 1;
     NewtonSolver solver(m, s);
     for (int k = 0; k < 30; ++k) ASSERT_EQ(solver.step().status, NewtonStatus::Converged);
     ASSERT_GT((solver.positions() - m.positions).norm(), 1e-3);  // the cloth has moved

@@ -1,12 +1,12 @@
 #include "drape/newton/hinge_bending.h"
 
-#include "drape/newton/strain_rate_damping.h"
-
 #include <Eigen/Geometry>
-#include <unsupported/Eigen/AutoDiff>
-
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <unsupported/Eigen/AutoDiff>
+
+#include "drape/newton/strain_rate_damping.h"
 
 namespace drape::newton {
 namespace {
@@ -286,6 +286,10 @@ void HingeBending::gradientPass(const Eigen::VectorXd& x, Eigen::VectorXd& g, bo
   const bool recordGradient = record && m_recordedGradient.enabled;
   if (recordGradient) m_recordedGradient.begin(x.size());
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
+    if (closedForm && m_options.batchedGradients) {
+      batchGradients(x, ids, count, recordAngles, recordGradient ? &m_recordedGradient.gradient : nullptr, fold, g);
+      return;
+    }
     for (int i = 0; i < count; ++i) {
       const Hinge& h = m_hinges[ids[i]];
       const HingeCoords q = gatherHinge(h, x);
@@ -306,6 +310,151 @@ void HingeBending::gradientPass(const Eigen::VectorXd& x, Eigen::VectorXd& g, bo
   if (recordAngles) {
     m_recordedAt = x;
     m_recordedClosedForm = closedForm;
+  }
+}
+
+// The closed-form hingeBendGradient of kLanes hinges at a time: every quantity an array over the lanes, so that the
+// arithmetic vectorises across hinges (the gathers, atan2 and the scatters stay scalar). A lane whose fade is 0
+// (a collapsed wing) contributes nothing, as in hingeBendGradient.
+void HingeBending::batchGradients(const Eigen::VectorXd& x, const int* ids, int count, bool recordAngles,
+                                  Eigen::VectorXd* recordedGradient, const BendingDissipation* fold,
+                                  Eigen::VectorXd& g) const {
+  constexpr int kLanes = 8;
+  const double foldFactor = fold ? fold->factor() : 0.0;
+  for (int i0 = 0; i0 < count; i0 += kLanes) {
+    const int lanes = std::min(kLanes, count - i0);
+    alignas(64) double q[12][kLanes], gr[12][kLanes], gd[12][kLanes], ge[12][kLanes];
+    // The wing fades' 1 / (ratio rest), and 1 where a wing has no rest length (no fade: t = 1).
+    alignas(64) double invScale[2][kLanes], noFade[2][kLanes];
+    alignas(64) double k[kLanes], sine[kLanes], cosine[kLanes], theta[kLanes];
+    alignas(64) double offset[kLanes], recordedOffset[kLanes], coef[kLanes], live[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      const int s = ids[i0 + (l < lanes ? l : 0)];
+      const Hinge& h = m_hinges[s];
+      for (int v = 0; v < 4; ++v) {
+        const double* xv = x.data() + 3 * h.v[v];
+        for (int d = 0; d < 3; ++d) q[3 * v + d][l] = xv[d];
+      }
+      k[l] = h.stiffness;
+      live[l] = l < lanes ? 1.0 : 0.0;
+      for (int w = 0; w < 2; ++w) {
+        const bool fades = h.restNormalLength[w] > 0.0;
+        invScale[w][l] = fades ? 1.0 / (kHingeCollapseRatio * h.restNormalLength[w]) : 0.0;
+        noFade[w][l] = fades ? 0.0 : 1.0;
+      }
+      if (fold) {
+        const Grad12& gs = fold->startGradient(s);
+        for (int j = 0; j < 12; ++j) gd[j][l] = gs(j);
+        offset[l] = fold->startOffset(s);
+      }
+    }
+    // Relative coordinates and the wing normals; atan2's arguments.
+    alignas(64) double e[3][kLanes], d2[3][kLanes], d3[3][kLanes], na[3][kLanes], nb[3][kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      for (int d = 0; d < 3; ++d) {
+        e[d][l] = q[3 + d][l] - q[d][l];
+        d2[d][l] = q[6 + d][l] - q[d][l];
+        d3[d][l] = q[9 + d][l] - q[d][l];
+      }
+      for (int d = 0; d < 3; ++d) {
+        const int d1 = (d + 1) % 3, dd = (d + 2) % 3;
+        na[d][l] = e[d1][l] * d2[dd][l] - e[dd][l] * d2[d1][l];
+        nb[d][l] = d3[d1][l] * e[dd][l] - d3[dd][l] * e[d1][l];
+      }
+      double m[3];
+      for (int d = 0; d < 3; ++d) {
+        const int d1 = (d + 1) % 3, dd = (d + 2) % 3;
+        m[d] = na[d1][l] * nb[dd][l] - na[dd][l] * nb[d1][l];
+      }
+      const double len = std::sqrt(e[0][l] * e[0][l] + e[1][l] * e[1][l] + e[2][l] * e[2][l]);
+      sine[l] = (m[0] * e[0][l] + m[1] * e[1][l] + m[2] * e[2][l]) / len;
+      cosine[l] = na[0][l] * nb[0][l] + na[1][l] * nb[1][l] + na[2][l] * nb[2][l];
+    }
+    for (int l = 0; l < kLanes; ++l) theta[l] = std::atan2(sine[l], cosine[l]);
+    for (int l = 0; l < kLanes; ++l) {
+      const double e2 = e[0][l] * e[0][l] + e[1][l] * e[1][l] + e[2][l] * e[2][l], len = std::sqrt(e2);
+      const double na2 = na[0][l] * na[0][l] + na[1][l] * na[1][l] + na[2][l] * na[2][l];
+      const double nb2 = nb[0][l] * nb[0][l] + nb[1][l] * nb[1][l] + nb[2][l] * nb[2][l];
+      // Wing fades (wingFade): t = |n| / (ratio rest), capped at 1 where the fade is 1 (or no rest length).
+      const double uA = std::sqrt(na2) * invScale[0][l] + noFade[0][l];
+      const double uB = std::sqrt(nb2) * invScale[1][l] + noFade[1][l];
+      // Capped at the lane's live flag (1; 0 on the padding lanes past count, whose fade is then 0): a run-time
+      // value, so that the compiler does not split the loop on the constant cap's branch and then not vectorise.
+      const double tA = uA < live[l] ? uA : live[l], tB = uB < live[l] ? uB : live[l];
+      const double cA = tA * tA * tA * (tA * (tA * 6.0 - 15.0) + 10.0);
+      const double cB = tB * tB * tB * (tB * (tB * 6.0 - 15.0) + 10.0);
+      const double dcA = 30.0 * tA * tA * (1.0 - tA) * (1.0 - tA) * invScale[0][l];
+      const double dcB = 30.0 * tB * tB * (1.0 - tB) * (1.0 - tB) * invScale[1][l];
+      const double fade = cA * cB, th = theta[l];
+      // A collapsed wing (fade 0, |n| = 0) divides by 1 instead, and every term below is then 0 (dc = 0 at t = 0).
+      const double dead = fade == 0.0 ? 1.0 : 0.0;
+      const double la2 = na2 + dead, lb2 = nb2 + dead, la = std::sqrt(la2), lb = std::sqrt(lb2);
+      // grad theta (closedFormGradient) times the fade.
+      const double ca = -len / la2 * fade, cb = -len / lb2 * fade;
+      const double pa = (d2[0][l] * e[0][l] + d2[1][l] * e[1][l] + d2[2][l] * e[2][l]) / e2;
+      const double pb = (d3[0][l] * e[0][l] + d3[1][l] * e[1][l] + d3[2][l] * e[2][l]) / e2;
+      // + theta grad(fade): the wings' normal-length gradients (hingeBendGradient).
+      const double wa = th * cB * dcA / la, wb = th * cA * dcB / lb;
+      for (int d = 0; d < 3; ++d) {
+        const int d1 = (d + 1) % 3, dd = (d + 2) % 3;
+        const double g2 = ca * na[d][l], g3 = cb * nb[d][l];
+        // d2 x nA, nA x e; nB x d3, e x nB (unnormalised; wa, wb carry 1 / |n|).
+        const double a1 = wa * (d2[d1][l] * na[dd][l] - d2[dd][l] * na[d1][l]);
+        const double aOwn = wa * (na[d1][l] * e[dd][l] - na[dd][l] * e[d1][l]);
+        const double b1 = wb * (nb[d1][l] * d3[dd][l] - nb[dd][l] * d3[d1][l]);
+        const double bOwn = wb * (e[d1][l] * nb[dd][l] - e[dd][l] * nb[d1][l]);
+        gr[d][l] = -(1.0 - pa) * g2 - (1.0 - pb) * g3 - (a1 + aOwn) - (b1 + bOwn);
+        gr[3 + d][l] = -pa * g2 - pb * g3 + a1 + b1;
+        gr[6 + d][l] = g2 + aOwn;
+        gr[9 + d][l] = g3 + bOwn;
+      }
+      coef[l] = m_scale * k[l] * th * fade;  // k_e phi
+    }
+    for (int j = 0; j < 12; ++j)
+      for (int l = 0; l < kLanes; ++l) ge[j][l] = coef[l] * gr[j][l];
+    if (recordAngles) {
+      // zeroSumOffset: g_0 = -(g_1 + g_2 + g_3), offset sum_k>0 g_k . (x_k - x_0).
+      for (int l = 0; l < kLanes; ++l) {
+        double o = 0.0;
+        for (int d = 0; d < 3; ++d) {
+          gr[d][l] = -(gr[3 + d][l] + gr[6 + d][l] + gr[9 + d][l]);
+          o += gr[3 + d][l] * (q[3 + d][l] - q[d][l]) + gr[6 + d][l] * (q[6 + d][l] - q[d][l]) +
+               gr[9 + d][l] * (q[9 + d][l] - q[d][l]);
+        }
+        recordedOffset[l] = o;
+      }
+      for (int l = 0; l < lanes; ++l) {
+        const int s = ids[i0 + l];
+        double* r = m_recorded[s].data();
+        for (int j = 0; j < 12; ++j) r[j] = gr[j][l];
+        m_recordedOffsets[s] = recordedOffset[l];
+      }
+    }
+    if (recordedGradient)
+      for (int l = 0; l < lanes; ++l) {
+        const Hinge& h = m_hinges[ids[i0 + l]];
+        for (int v = 0; v < 4; ++v)
+          for (int d = 0; d < 3; ++d) (*recordedGradient)[3 * h.v[v] + d] += ge[3 * v + d][l];
+      }
+    if (fold) {
+      // BendingDissipation::stencilGradient: (c k (g . d)) g, g . d = sum_k>0 g_k . (x_k - x_0) - o.
+      for (int l = 0; l < kLanes; ++l) {
+        double change = -offset[l];
+        for (int d = 0; d < 3; ++d)
+          change += gd[3 + d][l] * (q[3 + d][l] - q[d][l]) + gd[6 + d][l] * (q[6 + d][l] - q[d][l]) +
+                    gd[9 + d][l] * (q[9 + d][l] - q[d][l]);
+        coef[l] = foldFactor * k[l] * change;
+      }
+      for (int j = 0; j < 12; ++j)
+        for (int l = 0; l < kLanes; ++l) ge[j][l] += coef[l] * gd[j][l];
+    }
+    for (int l = 0; l < lanes; ++l) {
+      const Hinge& h = m_hinges[ids[i0 + l]];
+      for (int v = 0; v < 4; ++v) {
+        double* gv = g.data() + 3 * h.v[v];
+        for (int d = 0; d < 3; ++d) gv[d] += ge[3 * v + d][l];
+      }
+    }
   }
 }
 

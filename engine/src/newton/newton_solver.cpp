@@ -109,6 +109,7 @@ AssemblyOptions NewtonSolver::assemblyOptions() const {
   o.cachedBlockMap = m_settings.cachedBlockMap;
   o.parallel = m_settings.parallelAssembly;
   o.foldDissipation = m_settings.foldDissipation;
+  o.batchedGradients = m_settings.batchedGradients;
   return o;
 }
 

@@ -89,6 +89,7 @@ newton::NewtonSettings newtonSettingsFrom(const Settings& s) {
   n.cachedBlockMap = s.flag("solver.newton.block_map");
   n.parallelAssembly = s.flag("solver.newton.parallel_assembly");
   n.foldDissipation = s.flag("solver.newton.fold_dissipation");
+  n.batchedGradients = s.flag("solver.newton.batched_gradients");
   n.hessianReuseSteps = s.integer("solver.newton.hessian_reuse_steps");
   const std::string& pre = s.text("solver.cg.preconditioner");
   if (pre == "cholmod_direct") {

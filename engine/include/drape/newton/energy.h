@@ -21,6 +21,9 @@ struct AssemblyOptions {
   // The membrane and hinge bending add the element Hessians (and, in addGradientAndHessian, gradients) of the
   // dissipations on the same stencils to their own before one scatter; the dissipations then add nothing there.
   bool foldDissipation = true;
+  // The membrane's and the closed-form bending's gradient passes take eight stencils at a time, every quantity an
+  // array over them, so that the compiler vectorises the arithmetic across stencils (not in the paper).
+  bool batchedGradients = true;
 };
 
 // Quantities fixed during one time step, handed to every energy before the step's Newton iterations.

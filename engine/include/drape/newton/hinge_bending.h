@@ -121,6 +121,10 @@ class HingeBending : public Energy {
   mutable bool m_recordedClosedForm = true;
   // addGradient (record: as set up) and addGuessGradient (record: false).
   void gradientPass(const Eigen::VectorXd& x, Eigen::VectorXd& g, bool record) const;
+  // The closed-form part of gradientPass over the hinges ids[0 .. count): g += each hinge's gradient (with the
+  // folded dissipation's when fold is given); recordAngles: into m_recorded; recordedGradient: the elastic share.
+  void batchGradients(const Eigen::VectorXd& x, const int* ids, int count, bool recordAngles,
+                      Eigen::VectorXd* recordedGradient, const BendingDissipation* fold, Eigen::VectorXd& g) const;
   mutable RecordedGradient m_recordedGradient;  // elastic gradient of the last addGradient pass (no dissipation)
 };
 

@@ -64,6 +64,7 @@ struct NewtonSettings {
   // Stencil colouring (6.5): force and Hessian assembly in parallel (TBB) colour by colour, no atomics.
   bool parallelAssembly = true;
   bool foldDissipation = true;  // AssemblyOptions::foldDissipation: one scatter per triangle / hinge
+  bool batchedGradients = true;  // AssemblyOptions::batchedGradients: gradient passes eight stencils at a time
   // Reverse Cuthill-McKee renumbering of the matrix block rows (6.4): locality of SpMV and Hessian writes.
   bool reorderDofs = true;
   // (Warm-started PCG, fused parallel PCG kernels and mixed precision are switches of `linear`.)

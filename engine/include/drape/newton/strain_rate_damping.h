@@ -56,6 +56,9 @@ class MembraneDissipation : public LaggedDissipation {
   // The membrane on the same triangles, whose recorded deformation gradients beginStep takes over as F_n when
   // they were taken at x_n (nullptr: always computed).
   void setStartSource(const StvkMembrane* membrane) { m_source = membrane; }
+  // F_n of triangle s and W / (A diag(kWarp, kWeft, 2 kShear)) = beta / h (times the ramp), for this step.
+  const Eigen::Matrix<double, 3, 2>& startF(int s) const { return m_startF[s]; }
+  double factor() const { return m_factor; }
 
  private:
   bool folded() const { return m_folded && m_options.foldDissipation; }
@@ -108,6 +111,10 @@ class BendingDissipation : public LaggedDissipation {
   void setFolded(bool folded) { m_folded = folded; }
   // The hinge bending on the same hinges, whose recorded gradients beginStep reuses (nullptr: always computed).
   void setGradientSource(const HingeBending* bending) { m_source = bending; }
+  // This step's g and o of hinge s, and c / k_e = beta / h (times the ramp).
+  const Eigen::Matrix<double, 12, 1>& startGradient(int s) const { return m_gradients[s]; }
+  double startOffset(int s) const { return m_offsets[s]; }
+  double factor() const { return m_factor; }
 
  private:
   bool folded() const { return m_folded && m_options.foldDissipation; }

@@ -82,6 +82,11 @@ class StvkMembrane : public Energy {
   AssemblyOptions m_options;
   // addGradient (record: as set up) and addGuessGradient (record: false).
   void gradientPass(const Eigen::VectorXd& x, Eigen::VectorXd& g, bool record) const;
+  // gradientPass over the triangles ids[0 .. count) with AssemblyOptions::batchedGradients: g += each triangle's
+  // gradient (with the folded dissipation's when fold is given); recordF: F into m_recordedF; recordedGradient: the
+  // elastic share.
+  void batchGradients(const Eigen::VectorXd& x, const int* ids, int count, bool recordF,
+                      Eigen::VectorXd* recordedGradient, const MembraneDissipation* fold, Eigen::VectorXd& g) const;
   mutable RecordedGradient m_recorded;  // elastic gradient of the last addGradient pass (without the dissipation)
   bool m_recordF = false;
   mutable std::vector<Eigen::Matrix<double, 3, 2>> m_recordedF;  // F per triangle at m_recordedFAt
