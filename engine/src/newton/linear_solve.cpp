@@ -21,14 +21,30 @@ namespace {
 // ---------------------------------------------------------------------------------------------------------------
 // Plain PCG on Eigen vectors (the reference path, and the only one for incomplete Cholesky).
 
-// Preconditioned conjugate gradients from x (warm) or 0; applyA(p, out), applyP(r, out). Returns the iterations.
+// The factor a warm start's guess g is taken with: 1 while g leaves a smaller residual than a cold start
+// (|b - A g| <= |b|; r2 = |b - A g|^2, b2 = |b|^2); otherwise the multiple closest to the solution of A x = b in
+// the A-norm, g.b / g.Ag (xb, xax), which is never further from it than 0 (0, a cold start, when g.Ag is not
+// positive and finite). A guess pointing the wrong way is so turned round. Where the garment chatters, the velocity
+// change flips from step to step, and the last step's change, the Newton solver's guess, is about minus this step's:
+// on the t-shirt its residual was twice |b|, its best multiple -0.9 to -1 (docs/BENCHMARKS.md, stop 41).
+double guessScale(double xb, double xax, double r2, double b2) {
+  if (r2 <= b2) return 1.0;
+  return xax > 0.0 && std::isfinite(xax) && std::isfinite(xb) ? xb / xax : 0.0;
+}
+
+// Preconditioned conjugate gradients from x (warm, scaled by guessScale) or 0; applyA(p, out), applyP(r, out).
+// Returns the iterations.
 template <typename Vec, typename ApplyA, typename ApplyP>
 int pcg(const ApplyA& applyA, const ApplyP& applyP, const Vec& b, Vec& x, double tol, int maxIt, bool warm) {
   using S = typename Vec::Scalar;
   Vec r = b, z(b.size()), ap(b.size());
   if (warm) {
     applyA(x, ap);
-    r -= ap;
+    const S scale =
+        static_cast<S>(guessScale(static_cast<double>(x.dot(b)), static_cast<double>(x.dot(ap)),
+                                  static_cast<double>((b - ap).squaredNorm()), static_cast<double>(b.squaredNorm())));
+    x *= scale;
+    r -= scale * ap;
   } else {
     x.setZero(b.size());
   }
@@ -268,13 +284,27 @@ int fusedPcg(const StorageMatrix<S>& a, const std::vector<StoredBlock<S>>& inv,
   if (bNorm2 == 0.0 || !warm) x.setZero(b.size());
   if (bNorm2 == 0.0) return 0;
   const double stop2 = tol * tol * bNorm2;
-  if (warm) a.multiplyDot(x, ap);
-  // r = b - A x, z = P r, p = z; (r.z, r.r).
+  // The guess, or its multiple closest to the solution when it is worse than a cold start (guessScale).
+  S scale = 0;
+  if (warm) {
+    const double xax = a.multiplyDot(x, ap);
+    // (x.b, |b - A x|^2)
+    const Eigen::Vector2d d = reduceRows<Eigen::Vector2d>(n, [&](int r0, int r1) {
+      const auto xs = x.segment(3 * r0, 3 * (r1 - r0)), bs = b.segment(3 * r0, 3 * (r1 - r0));
+      return Eigen::Vector2d(static_cast<double>(xs.dot(bs)),
+                             static_cast<double>((bs - ap.segment(3 * r0, 3 * (r1 - r0))).squaredNorm()));
+    });
+    scale = static_cast<S>(guessScale(d(0), xax, d(1), bNorm2));
+  }
+  // x = scale x, r = b - A x, z = P r, p = z; (r.z, r.r).
   Eigen::Vector2d sums = reduceRows<Eigen::Vector2d>(n, [&](int r0, int r1) {
     Eigen::Vector2d acc = Eigen::Vector2d::Zero();
     for (int i = r0; i < r1; ++i) {
       Eigen::Matrix<S, 3, 1> ri = b.template segment<3>(3 * i);
-      if (warm) ri -= ap.template segment<3>(3 * i);
+      if (warm) {
+        x.template segment<3>(3 * i) *= scale;
+        ri -= scale * ap.template segment<3>(3 * i);
+      }
       const Eigen::Matrix<S, 3, 1> zi = applyBlock<S>(inv[i], ri);
       r.template segment<3>(3 * i) = ri;
       z.template segment<3>(3 * i) = zi;
