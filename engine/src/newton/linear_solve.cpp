@@ -21,15 +21,18 @@ namespace {
 // ---------------------------------------------------------------------------------------------------------------
 // Plain PCG on Eigen vectors (the reference path, and the only one for incomplete Cholesky).
 
-// The factor a warm start's guess g is taken with: 1 while g leaves a smaller residual than a cold start
-// (|b - A g| <= |b|; r2 = |b - A g|^2, b2 = |b|^2); otherwise the multiple closest to the solution of A x = b in
-// the A-norm, g.b / g.Ag (xb, xax), which is never further from it than 0 (0, a cold start, when g.Ag is not
-// positive and finite). A guess pointing the wrong way is so turned round. Where the garment chatters, the velocity
+// The factor a warm start's guess g is taken with, from xb = g.b and xax = g.Ag. g's best multiple, the one closest
+// to the solution of A x = b in the A-norm, is g.b / g.Ag; it is never further from the solution than 0. The guess
+// is taken as it is unless that multiple is below 1/8 (g points against the solution, or is far too long); then it
+// is taken with it (0, a cold start, when g.Ag is not positive and finite). Where the garment chatters, the velocity
 // change flips from step to step, and the last step's change, the Newton solver's guess, is about minus this step's:
-// on the t-shirt its residual was twice |b|, its best multiple -0.9 to -1 (docs/BENCHMARKS.md, stop 41).
-double guessScale(double xb, double xax, double r2, double b2) {
-  if (r2 <= b2) return 1.0;
-  return xax > 0.0 && std::isfinite(xax) && std::isfinite(xb) ? xb / xax : 0.0;
+// on the t-shirt its best multiple was -0.9 to -1 and its residual twice |b|, and the PCG needed twice the
+// iterations of the turned-round guess (docs/BENCHMARKS.md, stop 41). A guess somewhat too long but right in its
+// smooth part is kept: for the block-Jacobi PCG it is a better start than its scaled copy.
+double guessScale(double xb, double xax) {
+  if (!(xax > 0.0) || !std::isfinite(xax) || !std::isfinite(xb)) return 0.0;
+  const double best = xb / xax;
+  return best < 0.125 ? best : 1.0;
 }
 
 // Preconditioned conjugate gradients from x (warm, scaled by guessScale) or 0; applyA(p, out), applyP(r, out).
@@ -40,9 +43,7 @@ int pcg(const ApplyA& applyA, const ApplyP& applyP, const Vec& b, Vec& x, double
   Vec r = b, z(b.size()), ap(b.size());
   if (warm) {
     applyA(x, ap);
-    const S scale =
-        static_cast<S>(guessScale(static_cast<double>(x.dot(b)), static_cast<double>(x.dot(ap)),
-                                  static_cast<double>((b - ap).squaredNorm()), static_cast<double>(b.squaredNorm())));
+    const S scale = static_cast<S>(guessScale(static_cast<double>(x.dot(b)), static_cast<double>(x.dot(ap))));
     x *= scale;
     r -= scale * ap;
   } else {
@@ -288,13 +289,10 @@ int fusedPcg(const StorageMatrix<S>& a, const std::vector<StoredBlock<S>>& inv,
   S scale = 0;
   if (warm) {
     const double xax = a.multiplyDot(x, ap);
-    // (x.b, |b - A x|^2)
-    const Eigen::Vector2d d = reduceRows<Eigen::Vector2d>(n, [&](int r0, int r1) {
-      const auto xs = x.segment(3 * r0, 3 * (r1 - r0)), bs = b.segment(3 * r0, 3 * (r1 - r0));
-      return Eigen::Vector2d(static_cast<double>(xs.dot(bs)),
-                             static_cast<double>((bs - ap.segment(3 * r0, 3 * (r1 - r0))).squaredNorm()));
+    const double xb = reduceRows<double>(n, [&](int r0, int r1) {
+      return static_cast<double>(x.segment(3 * r0, 3 * (r1 - r0)).dot(b.segment(3 * r0, 3 * (r1 - r0))));
     });
-    scale = static_cast<S>(guessScale(d(0), xax, d(1), bNorm2));
+    scale = static_cast<S>(guessScale(xb, xax));
   }
   // x = scale x, r = b - A x, z = P r, p = z; (r.z, r.r).
   Eigen::Vector2d sums = reduceRows<Eigen::Vector2d>(n, [&](int r0, int r1) {
