@@ -285,7 +285,7 @@ int fusedPcg(const StorageMatrix<S>& a, const std::vector<StoredBlock<S>>& inv,
   if (bNorm2 == 0.0 || !warm) x.setZero(b.size());
   if (bNorm2 == 0.0) return 0;
   const double stop2 = tol * tol * bNorm2;
-  // The guess, or its multiple closest to the solution when it is worse than a cold start (guessScale).
+  // The guess as it is, or its best multiple when that is below 1/8 (guessScale).
   S scale = 0;
   if (warm) {
     const double xax = a.multiplyDot(x, ap);

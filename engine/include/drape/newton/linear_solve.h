@@ -31,7 +31,9 @@ struct LinearSolveOptions {
   int maxIterations = 500;
   bool mixedPrecision = false;  // PCG in float (matrix, vectors, preconditioner), derivatives stay double
   // Start PCG from the incoming x (when it has b's size and is finite) instead of 0: the solver hands in the
-  // previous step's velocity change. The stopping test stays |Ax - b| <= tolerance |b|.
+  // previous step's velocity change. A guess whose multiple closest to the solution (A-norm) is below 1/8, i.e. one
+  // pointing against the solution or far too long, is taken with that multiple. The stopping test stays
+  // |Ax - b| <= tolerance |b|.
   bool warmStart = true;
   // Fused block PCG in the matrix's storage order (RCM when the matrix is reordered): one pass over the block
   // rows per SpMV (with p.Ap), one fused pass for x, r, z = P r and both dot products, TBB over row chunks with
