@@ -326,7 +326,7 @@ void HingeBending::batchGradients(const Eigen::VectorXd& x, const int* ids, int 
     alignas(64) double q[12][kLanes], gr[12][kLanes], gd[12][kLanes], ge[12][kLanes];
     // The wing fades' 1 / (ratio rest), and 1 where a wing has no rest length (no fade: t = 1).
     alignas(64) double invScale[2][kLanes], noFade[2][kLanes];
-    alignas(64) double k[kLanes], sine[kLanes], cosine[kLanes], theta[kLanes];
+    alignas(64) double k[kLanes], sine[kLanes], cosine[kLanes], theta[kLanes], edgeLength[kLanes];
     alignas(64) double offset[kLanes], recordedOffset[kLanes], coef[kLanes], live[kLanes];
     for (int l = 0; l < kLanes; ++l) {
       const int s = ids[i0 + (l < lanes ? l : 0)];
@@ -367,17 +367,19 @@ void HingeBending::batchGradients(const Eigen::VectorXd& x, const int* ids, int 
         m[d] = na[d1][l] * nb[dd][l] - na[dd][l] * nb[d1][l];
       }
       const double len = std::sqrt(e[0][l] * e[0][l] + e[1][l] * e[1][l] + e[2][l] * e[2][l]);
+      edgeLength[l] = len;
       sine[l] = (m[0] * e[0][l] + m[1] * e[1][l] + m[2] * e[2][l]) / len;
       cosine[l] = na[0][l] * nb[0][l] + na[1][l] * nb[1][l] + na[2][l] * nb[2][l];
     }
     for (int l = 0; l < kLanes; ++l) theta[l] = std::atan2(sine[l], cosine[l]);
     for (int l = 0; l < kLanes; ++l) {
-      const double e2 = e[0][l] * e[0][l] + e[1][l] * e[1][l] + e[2][l] * e[2][l], len = std::sqrt(e2);
+      const double e2 = e[0][l] * e[0][l] + e[1][l] * e[1][l] + e[2][l] * e[2][l], len = edgeLength[l];
       const double na2 = na[0][l] * na[0][l] + na[1][l] * na[1][l] + na[2][l] * na[2][l];
       const double nb2 = nb[0][l] * nb[0][l] + nb[1][l] * nb[1][l] + nb[2][l] * nb[2][l];
       // Wing fades (wingFade): t = |n| / (ratio rest), capped at 1 where the fade is 1 (or no rest length).
-      const double uA = std::sqrt(na2) * invScale[0][l] + noFade[0][l];
-      const double uB = std::sqrt(nb2) * invScale[1][l] + noFade[1][l];
+      const double normA = std::sqrt(na2), normB = std::sqrt(nb2);
+      const double uA = normA * invScale[0][l] + noFade[0][l];
+      const double uB = normB * invScale[1][l] + noFade[1][l];
       // Capped at the lane's live flag (1; 0 on the padding lanes past count, whose fade is then 0): a run-time
       // value, so that the compiler does not split the loop on the constant cap's branch and then not vectorise.
       const double tA = uA < live[l] ? uA : live[l], tB = uB < live[l] ? uB : live[l];
@@ -386,9 +388,10 @@ void HingeBending::batchGradients(const Eigen::VectorXd& x, const int* ids, int 
       const double dcA = 30.0 * tA * tA * (1.0 - tA) * (1.0 - tA) * invScale[0][l];
       const double dcB = 30.0 * tB * tB * (1.0 - tB) * (1.0 - tB) * invScale[1][l];
       const double fade = cA * cB, th = theta[l];
-      // A collapsed wing (fade 0, |n| = 0) divides by 1 instead, and every term below is then 0 (dc = 0 at t = 0).
+      // Where the fade is 0 (a collapsed wing, |n| = 0, or a padding lane) the normals' lengths are taken 1 larger,
+      // so that nothing divides by 0, and every term below is then 0 (dc = 0 at t = 0).
       const double dead = fade == 0.0 ? 1.0 : 0.0;
-      const double la2 = na2 + dead, lb2 = nb2 + dead, la = std::sqrt(la2), lb = std::sqrt(lb2);
+      const double la2 = na2 + dead, lb2 = nb2 + dead, la = normA + dead, lb = normB + dead;
       // grad theta (closedFormGradient) times the fade.
       const double ca = -len / la2 * fade, cb = -len / lb2 * fade;
       const double pa = (d2[0][l] * e[0][l] + d2[1][l] * e[1][l] + d2[2][l] * e[2][l]) / e2;
