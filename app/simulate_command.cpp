@@ -37,6 +37,7 @@ nlohmann::json stepRecord(const StepReport& r) {
     j["linear_solve_time_s"] = r.linearSolveTime;
     j["hessian_reused"] = r.hessianReused;
     j["coarse_solves"] = r.coarseSolves;
+    j["coarse_factorizations"] = r.coarseFactorizations;
     j["coupled_solves"] = r.coupledSolves;
   }
   return j;

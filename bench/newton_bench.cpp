@@ -16,7 +16,7 @@
 // it is no feature here: measure it with --set.)
 // Configurations: a base "on" (every speed-up on) or "off" (all off) followed by "+X" / "-X" modifiers, e.g.
 // "off+bending+map", "on-reorder". X in {bending, map, parallel, fold, reorder, fused, warm, mixed, reuse, coarse,
-// coupled, guess, majorizer}. "all" = off, on and every on-X; "table7" = the cumulative sequence off,
+// coupled, guess, majorizer, batch, lag}. "all" = off, on and every on-X; "table7" = the cumulative sequence off,
 // off+bending, ..., on (newton-drape-pizana Table 7; the features after "coarse" are not in the paper either).
 #include <sys/resource.h>
 
@@ -75,6 +75,7 @@ const std::vector<Feature>& features() {
       // Friction is a contact term: the cloth mode (no contact) has none to switch.
       {"majorizer", "contact.friction_majorizer", [](NewtonSettings&, bool) {}},
       {"batch", "solver.newton.batched_gradients", [](NewtonSettings& s, bool on) { s.batchedGradients = on; }},
+      {"lag", "solver.cg.coarse_lagged", [](NewtonSettings& s, bool on) { s.coarseLagged = on; }},
   };
   return list;
 }

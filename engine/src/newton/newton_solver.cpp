@@ -205,7 +205,8 @@ bool NewtonSolver::assembleFirstIteration(const Eigen::VectorXd& x, double h, bo
 }
 
 void NewtonSolver::assembleHessian(const Eigen::VectorXd& x, double h) {
-  m_coarseStale = m_coupledStale = true;
+  m_coupledStale = true;
+  if (!m_settings.coarseLagged) m_coarseStale = true;
   m_matrixReady = false;
   m_matrix.setZero();
   for (size_t k = 0; k < m_elasticCount; ++k) m_energies[k]->addHessian(x, m_matrix);
@@ -256,15 +257,16 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
       for (int i = 0; i < m_mass.size(); ++i) m_matrix.diagonalBlock(i).diagonal().array() += m_mass(i) * invH2;
       m_pcgCache.valid = false;
     }
-    // Contact, friction and the drag spring add fresh blocks in every iteration; without them the coarse factor
-    // and the coupled groups' inverses live as long as the elastic Hessian (hessianReuseSteps), and so does the
-    // matrix.
+    // Contact, friction and the drag spring add fresh blocks in every iteration; without them the coupled groups'
+    // inverses live as long as the elastic Hessian (hessianReuseSteps), and so does the matrix. The lagged coarse
+    // factor lives that long with them too (NewtonSettings::coarseLagged).
     const bool useCoarse = m_coarse && m_useCoarse;
     const bool useGroups = m_settings.coupledThreshold > 0.0 && m_settings.linear.fusedKernels && m_useCoupled;
     const bool freshTerms = hasFreshTerms();
     m_matrixReady = !freshTerms && m_settings.hessianReuseSteps > 0;
-    if (useCoarse && (m_coarseStale || m_coarseH != h || freshTerms)) {
+    if (useCoarse && (m_coarseStale || m_coarseH != h || (freshTerms && !m_settings.coarseLagged))) {
       m_coarse->factorize(m_matrix);
+      ++report.coarseFactorizations;
       m_coarseStale = false;
       m_coarseH = h;
     }

@@ -171,6 +171,10 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"solver.cg.coarse_from_iterations", T::Integer, "30", "",
        "two-level PCG from a solve needing this many block-Jacobi iterations (until below a quarter; 0: always)", 0,
        1e6},
+      {"solver.cg.coarse_lagged", T::Boolean, "true", "",
+       "two-level PCG: the coarse matrix is factorised when the elastic Hessian is assembled afresh at a step's start "
+       "or h changes, and kept through contact changes and later Newton iterations (false: refactorised for every "
+       "changed matrix)"},
       {"solver.cg.coupled_groups", T::Number, "0.6", "",
        "block-Jacobi inverts up to four vertices as one block where the matrix couples them at least this strongly "
        "relative to their diagonal blocks (a stitch's two ends; fused PCG; 0: off)", 0, 1},

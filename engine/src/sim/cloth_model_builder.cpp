@@ -82,6 +82,7 @@ newton::NewtonSettings newtonSettingsFrom(const Settings& s) {
   n.linear.fusedKernels = s.flag("solver.cg.fused_kernels");
   n.coarseAggregate = static_cast<int>(s.integer("solver.cg.coarse_aggregate"));
   n.coarseFromIterations = static_cast<int>(s.integer("solver.cg.coarse_from_iterations"));
+  n.coarseLagged = s.flag("solver.cg.coarse_lagged");
   n.coupledThreshold = s.number("solver.cg.coupled_groups");
   n.coupledFromIterations = static_cast<int>(s.integer("solver.cg.coupled_from_iterations"));
   n.reorderDofs = s.flag("solver.newton.reorder_dofs");

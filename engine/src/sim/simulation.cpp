@@ -568,6 +568,7 @@ StepReport Simulation::step() {
     report.linearSolveTime = r.linearSolveSeconds;
     report.hessianReused = r.hessianReused;
     report.coarseSolves = r.coarseSolves;
+    report.coarseFactorizations = r.coarseFactorizations;
     report.coupledSolves = r.coupledSolves;
     report.splits = r.splits;
     report.residual = r.residual;

@@ -85,9 +85,15 @@ struct NewtonSettings {
   // line-search pass recorded (energy.h, addRecordedStepStartGradient).
   bool stepStartGradients = true;
   // Two-level PCG (coarse_space.h; not in the paper): vertices per coarse aggregate, 0 = block-Jacobi alone (the
-  // paper). The coarse matrix is refactorised for every solve in scenes with contact, friction or a drag spring
-  // (fresh blocks in every iteration), otherwise only when the elastic Hessian is assembled afresh or h changes.
+  // paper).
   int coarseAggregate = 16;
+  // The coarse matrix is a preconditioner: the PCG meets tau_cg with a somewhat stale one too. Lagged (default), it
+  // is factorised from the matrix of a step's first Newton iteration when the elastic Hessian was assembled afresh
+  // there (hessianReuseSteps), or when h changed, and kept through later Newton iterations and the contact, friction
+  // and drag-spring blocks that change in every iteration. Not lagged: refactorised for every solve whose matrix
+  // changed (every solve in scenes with contact). On the 1 cm t-shirt lagging cut the factorisations 3.5x with no more
+  // PCG iterations (docs/BENCHMARKS.md, stop 42).
+  bool coarseLagged = true;
   // The coarse level is used from the solve after one that needed at least this many PCG iterations with
   // block-Jacobi alone, until a two-level solve needs fewer than a quarter of it (0: always). On a soft garment
   // with contact (the default scene: ~20 iterations per step) its cost per solve outweighs the iterations saved.
@@ -130,6 +136,7 @@ struct NewtonStepReport {
   bool hessianReused = false;  // the first iteration solved with a reused elastic Hessian (hessianReuseSteps)
   int recordedGradients = 0;   // energies whose first gradient came from the last step's pass (stepStartGradients)
   int coarseSolves = 0;        // linear solves with the two-level preconditioner (coarseAggregate)
+  int coarseFactorizations = 0;  // coarse matrices factorised for them (coarseLagged)
   int coupledSolves = 0;       // linear solves with coupled groups (coupledThreshold)
 };
 

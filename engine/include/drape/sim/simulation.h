@@ -52,6 +52,7 @@ struct StepReport {
   double linearSolveTime = 0.0;
   bool hessianReused = false;  // drape: the first Newton iteration solved with an earlier step's elastic Hessian
   int coarseSolves = 0;        // drape: linear solves with the two-level PCG (solver.cg.coarse_aggregate)
+  int coarseFactorizations = 0;  // drape: coarse matrices factorised for them (solver.cg.coarse_lagged)
   int coupledSolves = 0;       // drape: linear solves with coupled groups (solver.cg.coupled_groups)
   bool atRest = false;         // early stop reached
 };
