@@ -68,10 +68,11 @@ TEST(NewtonCoarseLag, LaggedFactorEndsWhereTheRefactorisedOneEndsWithFewerFactor
   // coarse factor must move it by much less than that.
   const double cgEffect = (fresh.positions - ref.positions).rowwise().norm().maxCoeff();
   const double lagEffect = (lagged.positions - fresh.positions).rowwise().norm().maxCoeff();
-  std::printf("steps %d; factorisations %d refactorised, %d lagged (%d solves); PCG iterations %d / %d; largest "
-              "vertex distance: tolerance 1e-2 against 1e-7 %.2e m, lagged against refactorised %.2e m\n",
-              fresh.steps, fresh.factorizations, lagged.factorizations, lagged.solves, fresh.cgIterations,
-              lagged.cgIterations, cgEffect, lagEffect);
+  std::printf(
+      "steps %d; factorisations %d refactorised, %d lagged (%d solves); PCG iterations %d / %d; largest "
+      "vertex distance: tolerance 1e-2 against 1e-7 %.2e m, lagged against refactorised %.2e m\n",
+      fresh.steps, fresh.factorizations, lagged.factorizations, lagged.solves, fresh.cgIterations, lagged.cgIterations,
+      cgEffect, lagEffect);
   EXPECT_LT(lagEffect, 0.25 * cgEffect);
 }
 
