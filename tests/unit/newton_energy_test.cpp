@@ -47,6 +47,50 @@ TEST(NewtonEnergy, BendingGradientAndExactHessian) {
   }
 }
 
+// The assembly passes write each stencil's Hessian block by block: the membrane's from F's outer products with the
+// stress clamped in closed form, the bending's Gauss-Newton outer product. They must equal the element Hessians
+// formed whole and summed (elementHessian, clamped by Eigen's eigen solver; k_e grad(phi) grad(phi)^T), exact and
+// projected, on a cloth compressed along the warp so that the clamp cuts.
+TEST(NewtonEnergy, AssembledHessiansEqualTheElementHessiansSummed) {
+  ClothModel m = gridCloth(6, 0.05, 0.3, 11);
+  for (int v = 0; v < m.numVertices(); ++v) m.positions(3 * v) *= 0.8;
+  const Eigen::VectorXd& x = m.positions;
+  const int n = static_cast<int>(x.size());
+  auto scatter = [](Eigen::MatrixXd& dense, const auto& vertices, const auto& he) {
+    const int k = static_cast<int>(vertices.size());
+    for (int a = 0; a < k; ++a)
+      for (int b = 0; b < k; ++b)
+        dense.block<3, 3>(3 * vertices[a], 3 * vertices[b]) += he.template block<3, 3>(3 * a, 3 * b);
+  };
+  auto dense = [&](const Energy& e, const Eigen::VectorXd& at) {
+    std::vector<std::pair<int, int>> pairs;
+    e.addCouplings(pairs);
+    BlockMatrix h;
+    h.build(n / 3, pairs);
+    e.addHessian(at, h);
+    return Eigen::MatrixXd(h.toSparse());
+  };
+  StvkMembrane membrane(m);
+  Eigen::MatrixXd byStencil[2];
+  for (bool exact : {true, false}) {
+    membrane.setExactHessian(exact);
+    Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(n, n);
+    for (const MembraneElement& e : membrane.elements()) scatter(expected, e.v, membrane.elementHessian(e, x));
+    byStencil[exact] = dense(membrane, x);
+    EXPECT_LT((byStencil[exact] - expected).norm(), 1e-12 * expected.norm()) << (exact ? "exact" : "projected");
+  }
+  EXPECT_GT((byStencil[1] - byStencil[0]).norm(), 1e-3 * byStencil[1].norm()) << "the clamp must cut somewhere";
+  HingeBending bending(m);
+  Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(n, n);
+  for (const Hinge& h : bending.hinges()) {
+    double phi = 0.0;
+    const Eigen::Matrix<double, 12, 1> grad = hingeBendGradient(h, x, true, phi);
+    scatter(expected, h.v, Eigen::Matrix<double, 12, 12>(h.stiffness * grad * grad.transpose()));
+  }
+  ASSERT_GT(expected.norm(), 0.0);
+  EXPECT_LT((dense(bending, x) - expected).norm(), 1e-12 * expected.norm());
+}
+
 TEST(NewtonEnergy, HingeAngleOfAKnownFold) {
   // Edge along x, wing 2 rotated by 90 degrees about it: |theta| = pi / 2; flat: 0.
   ClothModel m = gridCloth(2, 1.0, 0.3, 1);

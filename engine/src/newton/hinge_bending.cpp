@@ -472,22 +472,26 @@ void HingeBending::assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockM
   const BendingDissipation* fold = m_options.foldDissipation ? m_dissipation : nullptr;
   if (cached) m_stencils.prepare(hm);
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
-    Grad12 gd;
     for (int i = 0; i < count; ++i) {
-      const Hinge& h = m_hinges[ids[i]];
+      const int s = ids[i];
+      const Hinge& h = m_hinges[s];
       const HingeCoords q = gatherHinge(h, x);
       double phi = 0.0;
-      Grad12 grad = hingeBendGradient(h, q, closedForm, phi);
-      Eigen::Matrix<double, 12, 12> he = grad * grad.transpose();
-      if (m_exactHessian) he += phi * hingeBendHessian(h, x);
-      he *= m_scale * h.stiffness;
-      Grad12 ge = (m_scale * h.stiffness * phi) * grad;
-      if (fold) {
-        he += fold->stencilDerivatives(ids[i], q, h.stiffness, g ? &gd : nullptr);
-        if (g) ge += gd;
+      const Grad12 grad = hingeBendGradient(h, q, closedForm, phi);
+      const double k = m_scale * h.stiffness;
+      Grad12 ge = (k * phi) * grad;
+      if (fold && g) ge += fold->stencilGradient(s, q, h.stiffness);
+      if (g) m_stencils.addGradient(s, ge, *g);
+      // Gauss-Newton k grad grad^T, and the folded dissipation's (c k_e) g_n g_n^T (stencilDerivatives).
+      const double foldWeight = fold ? fold->factor() * h.stiffness : 0.0;
+      const Grad12& gn = fold ? fold->startGradient(s) : grad;
+      if (!m_exactHessian) {
+        m_stencils.addOuterProducts(s, k, grad, foldWeight, gn, hm, cached);
+        continue;
       }
-      m_stencils.addHessian(ids[i], he, hm, cached);
-      if (g) m_stencils.addGradient(ids[i], ge, *g);
+      Eigen::Matrix<double, 12, 12> he = k * (grad * grad.transpose() + phi * hingeBendHessian(h, x));
+      if (fold) he += foldWeight * (gn * gn.transpose());
+      m_stencils.addHessian(s, he, hm, cached);
     }
   });
 }

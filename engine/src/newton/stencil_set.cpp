@@ -147,26 +147,46 @@ void StencilSet<N>::prepare(const BlockMatrix& h) const {
 }
 
 template <int N>
-void StencilSet<N>::addHessian(int s, const Eigen::Matrix<double, 3 * N, 3 * N>& he, BlockMatrix& h,
-                               bool cached) const {
+void StencilSet<N>::addPairBlock(int s, int a, int b, int p, const Eigen::Matrix3d& blk, BlockMatrix& h,
+                                 bool cached) const {
   const Stencil& st = m_stencils[s];
-  if (!cached) {
-    for (int a = 0; a < N; ++a)
-      for (int b = a; b < N; ++b) h.addBlock(st[a], st[b], he.template block<3, 3>(3 * a, 3 * b));
+  const int k = cached ? m_slots[s][2 * p] : -1, kt = cached ? m_slots[s][2 * p + 1] : -1;
+  if (k < 0) {  // no slot map, or outside the static pattern (dynamic part): addBlock finds the place
+    h.addBlock(st[a], st[b], blk);
     return;
   }
-  const auto& slots = m_slots[s];
+  h.blockAt(k) += blk;
+  if (kt != kNoTranspose) h.blockAt(kt) += blk.transpose();
+}
+
+template <int N>
+void StencilSet<N>::addHessian(int s, const Eigen::Matrix<double, 3 * N, 3 * N>& he, BlockMatrix& h,
+                               bool cached) const {
   int p = 0;
   for (int a = 0; a < N; ++a)
-    for (int b = a; b < N; ++b, ++p) {
-      const int k = slots[2 * p], kt = slots[2 * p + 1];
-      if (k < 0) {  // outside the static pattern: dynamic part, as addBlock would do
-        h.addBlock(st[a], st[b], he.template block<3, 3>(3 * a, 3 * b));
-        continue;
-      }
-      h.blockAt(k) += he.template block<3, 3>(3 * a, 3 * b);
-      if (kt != kNoTranspose) h.blockAt(kt) += he.template block<3, 3>(3 * a, 3 * b).transpose();
+    for (int b = a; b < N; ++b, ++p) addPairBlock(s, a, b, p, he.template block<3, 3>(3 * a, 3 * b), h, cached);
+}
+
+template <int N>
+void StencilSet<N>::addPairBlocks(int s, const std::array<Eigen::Matrix3d, kPairs>& blocks, BlockMatrix& h,
+                                  bool cached) const {
+  int p = 0;
+  for (int a = 0; a < N; ++a)
+    for (int b = a; b < N; ++b, ++p) addPairBlock(s, a, b, p, blocks[p], h, cached);
+}
+
+template <int N>
+void StencilSet<N>::addOuterProducts(int s, double a, const Eigen::Matrix<double, 3 * N, 1>& u, double b,
+                                     const Eigen::Matrix<double, 3 * N, 1>& w, BlockMatrix& h, bool cached) const {
+  int p = 0;
+  for (int i = 0; i < N; ++i) {
+    const Eigen::Vector3d ui = a * u.template segment<3>(3 * i), wi = b * w.template segment<3>(3 * i);
+    for (int j = i; j < N; ++j, ++p) {
+      const Eigen::Matrix3d blk =
+          ui * u.template segment<3>(3 * j).transpose() + wi * w.template segment<3>(3 * j).transpose();
+      addPairBlock(s, i, j, p, blk, h, cached);
     }
+  }
 }
 
 template <int N>

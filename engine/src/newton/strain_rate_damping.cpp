@@ -89,13 +89,6 @@ Eigen::Matrix<double, 9, 9> MembraneDissipation::stencilHessian(int s, const Mem
   return (j.transpose() * weights(e).asDiagonal()).lazyProduct(j);  // coefficient-based: no GEMM for 9 x 3 x 9
 }
 
-Eigen::Matrix<double, 9, 9> MembraneDissipation::stencilDerivatives(int s, const MembraneElement& e,
-                                                                    const Eigen::Matrix<double, 3, 2>& f,
-                                                                    Eigen::Matrix<double, 9, 1>* ge) const {
-  if (ge) *ge = stencilGradient(s, e, f);
-  return stencilHessian(s, e);
-}
-
 void MembraneDissipation::addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const { assemble(x, nullptr, h); }
 
 void MembraneDissipation::addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const {

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -23,6 +24,38 @@ Eigen::Vector3d greenStrain(const Eigen::Matrix<double, 3, 2>& f) {
 }
 
 Eigen::Vector3d voigtWeights(const MembraneElement& e) { return {e.kWarp, e.kWeft, 2.0 * e.kShear}; }
+
+// The positive part of a symmetric 2x2 matrix (its eigenvalues clamped at 0), in closed form: with eigenvalues
+// high > 0 > low it is high v v^T = high / (high - low) (s - low I).
+Eigen::Matrix2d positivePart(const Eigen::Matrix2d& s) {
+  const double mean = 0.5 * (s(0, 0) + s(1, 1)), half = 0.5 * (s(0, 0) - s(1, 1));
+  const double radius = std::sqrt(half * half + s(0, 1) * s(0, 1));
+  const double high = mean + radius, low = mean - radius;
+  if (low >= 0.0) return s;
+  if (high <= 0.0) return Eigen::Matrix2d::Zero();
+  return (high / (high - low)) * (s - low * Eigen::Matrix2d::Identity());
+}
+
+// Adds to blocks (pairs (a, b), a <= b, in StencilSet order) the blocks of J^T diag(w) J, J = greenStrainJacobian at
+// f, and, when stress is given, the geometric term (c_a . stress c_b) I: elementDerivatives' Hessian, written block
+// by block from f's outer products instead of as a 9 x 9 product. With J_k's rows c_k0 f0, c_k1 f1 and
+// (c_k0 f1 + c_k1 f0) / 2, block (a, b) is
+//   (w0 c_a0 c_b0 + w2/4 c_a1 c_b1) f0 f0^T + (w1 c_a1 c_b1 + w2/4 c_a0 c_b0) f1 f1^T
+//   + w2/4 (c_a1 c_b0 f0 f1^T + c_a0 c_b1 f1 f0^T).
+void addStrainHessianBlocks(const MembraneElement& e, const Eigen::Matrix<double, 3, 2>& f, const Eigen::Vector3d& w,
+                            const Eigen::Matrix2d* stress, std::array<Eigen::Matrix3d, 6>& blocks) {
+  const Eigen::Matrix3d p00 = f.col(0) * f.col(0).transpose(), p11 = f.col(1) * f.col(1).transpose();
+  const Eigen::Matrix3d p01 = f.col(0) * f.col(1).transpose();
+  const double q = 0.25 * w(2);
+  int p = 0;
+  for (int a = 0; a < 3; ++a)
+    for (int b = a; b < 3; ++b, ++p) {
+      const Eigen::Vector2d &ca = e.c[a], &cb = e.c[b];
+      blocks[p] += (w(0) * ca(0) * cb(0) + q * ca(1) * cb(1)) * p00 + (w(1) * ca(1) * cb(1) + q * ca(0) * cb(0)) * p11 +
+                   (q * ca(1) * cb(0)) * p01 + (q * ca(0) * cb(1)) * p01.transpose();
+      if (stress) blocks[p].diagonal().array() += ca.dot(*stress * cb);
+    }
+}
 
 }  // namespace
 
@@ -243,36 +276,44 @@ Eigen::Matrix<double, 9, 9> StvkMembrane::elementDerivatives(const MembraneEleme
   return (m_scale * e.area) * h;
 }
 
-void StvkMembrane::addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const {
-  const bool cached = m_options.cachedBlockMap;
-  const MembraneDissipation* fold = m_options.foldDissipation ? m_dissipation : nullptr;
-  if (cached) m_stencils.prepare(h);
-  m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
-    for (int i = 0; i < count; ++i) {
-      const MembraneElement& e = m_elements[ids[i]];
-      Eigen::Matrix<double, 9, 9> he = elementHessian(e, x);
-      if (fold) he += fold->stencilHessian(ids[i], e);
-      m_stencils.addHessian(ids[i], he, h, cached);
-    }
-  });
-}
+void StvkMembrane::addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const { assemble(x, nullptr, h); }
 
 void StvkMembrane::addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const {
+  assemble(x, &g, h);
+}
+
+// elementDerivatives (and the folded dissipation's stencilDerivatives) per triangle, the Hessian's upper blocks
+// written straight from F's outer products (addStrainHessianBlocks) and the stress clamped in closed form.
+void StvkMembrane::assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockMatrix& h) const {
   const bool cached = m_options.cachedBlockMap;
   if (cached) m_stencils.prepare(h);
   const MembraneDissipation* fold = m_options.foldDissipation ? m_dissipation : nullptr;
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
-    Eigen::Matrix<double, 9, 1> ge, gd;
+    Eigen::Matrix<double, 9, 1> ge;
+    std::array<Eigen::Matrix3d, 6> blocks;
     for (int i = 0; i < count; ++i) {
-      const MembraneElement& e = m_elements[ids[i]];
+      const int s = ids[i];
+      const MembraneElement& e = m_elements[s];
       const Eigen::Matrix<double, 3, 2> f = deformationGradient(e, x);
-      Eigen::Matrix<double, 9, 9> he = elementDerivatives(e, f, &ge);
-      if (fold) {
-        he += fold->stencilDerivatives(ids[i], e, f, &gd);
-        ge += gd;
+      const Eigen::Vector3d w = (m_scale * e.area) * voigtWeights(e);
+      const Eigen::Vector3d sigma = greenStrain(f).cwiseProduct(w);  // scaled second Piola-Kirchhoff stress, Voigt
+      if (g) {
+        // J^T sigma without forming J, as gradientPass.
+        const Eigen::Vector3d a = sigma(0) * f.col(0) + 0.5 * sigma(2) * f.col(1);
+        const Eigen::Vector3d b = sigma(1) * f.col(1) + 0.5 * sigma(2) * f.col(0);
+        for (int k = 0; k < 3; ++k) ge.segment<3>(3 * k) = e.c[k](0) * a + e.c[k](1) * b;
+        if (fold) ge += fold->stencilGradient(s, e, f);
+        m_stencils.addGradient(s, ge, *g);
       }
-      m_stencils.addHessian(ids[i], he, h, cached);
-      m_stencils.addGradient(ids[i], ge, g);
+      Eigen::Matrix2d stress;
+      stress << sigma(0), 0.5 * sigma(2), 0.5 * sigma(2), sigma(1);
+      if (!m_exactHessian) stress = positivePart(stress);
+      for (auto& block : blocks) block.setZero();
+      addStrainHessianBlocks(e, f, w, &stress, blocks);
+      // The stretch dissipation's J_n^T W J_n (MembraneDissipation::stencilHessian), W = c A (kWarp, kWeft, 2 kShear).
+      if (fold)
+        addStrainHessianBlocks(e, fold->startF(s), (fold->factor() * e.area) * voigtWeights(e), nullptr, blocks);
+      m_stencils.addPairBlocks(s, blocks, h, cached);
     }
   });
 }

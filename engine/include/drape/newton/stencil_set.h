@@ -55,6 +55,12 @@ class StencilSet {
   // H(va, vb) += he_ab and H(vb, va) += he_ab^T for a < b, H(va, va) += he_aa. cached: through the slot map
   // (prepare first); otherwise through BlockMatrix::addBlock (binary search per block).
   void addHessian(int s, const Eigen::Matrix<double, 3 * N, 3 * N>& he, BlockMatrix& h, bool cached) const;
+  // The same from the blocks (a, b), a <= b, of he in pair order ((0, 0), (0, 1), ..., (1, 1), ...).
+  void addPairBlocks(int s, const std::array<Eigen::Matrix3d, kPairs>& blocks, BlockMatrix& h, bool cached) const;
+  // The same for he = a u u^T + b w w^T (u, w: 3N), block by block without forming he (hinge bending's Gauss-Newton
+  // Hessian with its folded dissipation's): a tenth of the arithmetic and no 3N x 3N temporaries.
+  void addOuterProducts(int s, double a, const Eigen::Matrix<double, 3 * N, 1>& u, double b,
+                        const Eigen::Matrix<double, 3 * N, 1>& w, BlockMatrix& h, bool cached) const;
   // g(3 v_a .. 3 v_a + 2) += ge(3a .. 3a + 2).
   void addGradient(int s, const Eigen::Matrix<double, 3 * N, 1>& ge, Eigen::VectorXd& g) const;
   // Appends the vertex pairs (v_a, v_b), a < b, of every stencil (static couplings).
@@ -68,6 +74,8 @@ class StencilSet {
   mutable std::vector<int> m_chunkStart;                     // chunk c: m_serialOrder[start[c] .. start[c + 1])
   mutable std::vector<std::vector<int>> m_chunkColours;      // chunks of each colour; empty: no chunk schedule
 
+  // Adds block (a, b) = blk of stencil s (and its transpose at (b, a), a < b), pair index p of (a, b).
+  void addPairBlock(int s, int a, int b, int p, const Eigen::Matrix3d& blk, BlockMatrix& h, bool cached) const;
   // Rebuilds the chunk schedule from the rows the stencils' vertices map to; sortByRow first sorts the serial
   // order and the colours by each stencil's first row (ties by index).
   void scheduleChunks(const std::function<int(int vertex)>& row, bool sortByRow) const;

@@ -40,11 +40,9 @@ class MembraneDissipation : public LaggedDissipation {
   void addGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const override;
   void addCouplings(std::vector<std::pair<int, int>>& pairs) const override { m_stencils.addCouplings(pairs); }
 
-  // Element Hessian of triangle s for this step (constant within it) and, when ge is given, the element gradient
-  // at the triangle's deformation gradient f (beginStep first). e: the membrane's element of triangle s (the same
-  // rest data as this energy's; a folding membrane passes the copy it has at hand, saving a second read).
-  Eigen::Matrix<double, 9, 9> stencilDerivatives(int s, const MembraneElement& e, const Eigen::Matrix<double, 3, 2>& f,
-                                                 Eigen::Matrix<double, 9, 1>* ge) const;
+  // Element Hessian of triangle s for this step, J_n^T W J_n (constant within it; beginStep first). e: the
+  // membrane's element of triangle s (the same rest data as this energy's; a folding membrane passes the copy it has
+  // at hand, saving a second read, and writes this Hessian's blocks itself from startF and factor).
   Eigen::Matrix<double, 9, 9> stencilHessian(int s, const MembraneElement& e) const;
   // Element gradient of triangle s at x, or at its deformation gradient f (beginStep first; e as above).
   Eigen::Matrix<double, 9, 1> stencilGradient(int s, const Eigen::VectorXd& x) const;

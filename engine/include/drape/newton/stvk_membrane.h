@@ -80,6 +80,8 @@ class StvkMembrane : public Energy {
   double m_scale = 1.0;
   bool m_exactHessian = false;
   AssemblyOptions m_options;
+  // Hessian into h and, when g is given, the gradient into *g (one pass).
+  void assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockMatrix& h) const;
   // addGradient (record: as set up) and addGuessGradient (record: false).
   void gradientPass(const Eigen::VectorXd& x, Eigen::VectorXd& g, bool record) const;
   // gradientPass over the triangles ids[0 .. count) with AssemblyOptions::batchedGradients: g += each triangle's
