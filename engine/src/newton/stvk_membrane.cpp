@@ -25,6 +25,17 @@ Eigen::Vector3d greenStrain(const Eigen::Matrix<double, 3, 2>& f) {
 
 Eigen::Vector3d voigtWeights(const MembraneElement& e) { return {e.kWarp, e.kWeft, 2.0 * e.kShear}; }
 
+// J^T sigma without forming J (greenStrainJacobian at f): vertex k gets c_k0 s0 f0 + c_k1 s1 f1 + s2/2 (c_k0 f1 +
+// c_k1 f0).
+Eigen::Matrix<double, 9, 1> strainGradient(const MembraneElement& e, const Eigen::Matrix<double, 3, 2>& f,
+                                           const Eigen::Vector3d& sigma) {
+  const Eigen::Vector3d a = sigma(0) * f.col(0) + 0.5 * sigma(2) * f.col(1);
+  const Eigen::Vector3d b = sigma(1) * f.col(1) + 0.5 * sigma(2) * f.col(0);
+  Eigen::Matrix<double, 9, 1> ge;
+  for (int k = 0; k < 3; ++k) ge.segment<3>(3 * k) = e.c[k](0) * a + e.c[k](1) * b;
+  return ge;
+}
+
 // The positive part of a symmetric 2x2 matrix (its eigenvalues clamped at 0), in closed form: with eigenvalues
 // high > 0 > low it is high v v^T = high / (high - low) (s - low I).
 Eigen::Matrix2d positivePart(const Eigen::Matrix2d& s) {
@@ -140,12 +151,7 @@ void StvkMembrane::gradientPass(const Eigen::VectorXd& x, Eigen::VectorXd& g, bo
       const MembraneElement& e = m_elements[ids[i]];
       const Eigen::Matrix<double, 3, 2> f = deformationGradient(e, x);
       if (recordF) m_recordedF[ids[i]] = f;
-      // J^T sigma without forming J (greenStrainJacobian): vertex k gets
-      // c_k0 s0 f0 + c_k1 s1 f1 + s2/2 (c_k0 f1 + c_k1 f0).
-      const Eigen::Vector3d sigma = (m_scale * e.area) * greenStrain(f).cwiseProduct(voigtWeights(e));
-      const Eigen::Vector3d a = sigma(0) * f.col(0) + 0.5 * sigma(2) * f.col(1);
-      const Eigen::Vector3d b = sigma(1) * f.col(1) + 0.5 * sigma(2) * f.col(0);
-      for (int k = 0; k < 3; ++k) ge.segment<3>(3 * k) = e.c[k](0) * a + e.c[k](1) * b;
+      ge = strainGradient(e, f, (m_scale * e.area) * greenStrain(f).cwiseProduct(voigtWeights(e)));
       if (record) m_stencils.addGradient(ids[i], ge, m_recorded.gradient);
       if (fold) ge += fold->stencilGradient(ids[i], e, f);
       m_stencils.addGradient(ids[i], ge, g);
@@ -282,14 +288,13 @@ void StvkMembrane::addGradientAndHessian(const Eigen::VectorXd& x, Eigen::Vector
   assemble(x, &g, h);
 }
 
-// elementDerivatives (and the folded dissipation's stencilDerivatives) per triangle, the Hessian's upper blocks
-// written straight from F's outer products (addStrainHessianBlocks) and the stress clamped in closed form.
+// elementDerivatives (and the folded dissipation's stencilGradient and stencilHessian) per triangle, the Hessian's
+// upper blocks written straight from F's outer products (addStrainHessianBlocks), the stress clamped in closed form.
 void StvkMembrane::assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockMatrix& h) const {
   const bool cached = m_options.cachedBlockMap;
   if (cached) m_stencils.prepare(h);
   const MembraneDissipation* fold = m_options.foldDissipation ? m_dissipation : nullptr;
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
-    Eigen::Matrix<double, 9, 1> ge;
     std::array<Eigen::Matrix3d, 6> blocks;
     for (int i = 0; i < count; ++i) {
       const int s = ids[i];
@@ -298,10 +303,7 @@ void StvkMembrane::assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockM
       const Eigen::Vector3d w = (m_scale * e.area) * voigtWeights(e);
       const Eigen::Vector3d sigma = greenStrain(f).cwiseProduct(w);  // scaled second Piola-Kirchhoff stress, Voigt
       if (g) {
-        // J^T sigma without forming J, as gradientPass.
-        const Eigen::Vector3d a = sigma(0) * f.col(0) + 0.5 * sigma(2) * f.col(1);
-        const Eigen::Vector3d b = sigma(1) * f.col(1) + 0.5 * sigma(2) * f.col(0);
-        for (int k = 0; k < 3; ++k) ge.segment<3>(3 * k) = e.c[k](0) * a + e.c[k](1) * b;
+        Eigen::Matrix<double, 9, 1> ge = strainGradient(e, f, sigma);
         if (fold) ge += fold->stencilGradient(s, e, f);
         m_stencils.addGradient(s, ge, *g);
       }
