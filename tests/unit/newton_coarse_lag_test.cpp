@@ -60,7 +60,7 @@ TEST(NewtonCoarseLag, LaggedFactorEndsWhereTheRefactorisedOneEndsWithFewerFactor
   }
   // Refactorised: every solve's matrix holds new contact blocks, so every solve factorises.
   EXPECT_EQ(fresh.factorizations, fresh.solves);
-  // Lagged: once per fresh elastic Hessian (every hessian_reuse_steps + 1 steps at the most) or new h.
+  // Lagged: once per fresh elastic Hessian (at least every hessian_reuse_steps + 1 steps) or new h.
   EXPECT_LT(lagged.factorizations, fresh.factorizations / 2);
   EXPECT_GT(lagged.factorizations, 0);
   EXPECT_LE(lagged.cgIterations, 1.25 * fresh.cgIterations);
