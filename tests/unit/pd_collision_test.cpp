@@ -118,6 +118,7 @@ TEST(PdCollision, ContactAccumulatorMergesConstraintsOnOneDof) {
 struct DropResult {
   int inside = 0;           // vertices inside the sphere (analytic) after the steps
   double centreHeight = 0;  // y of the vertex over the sphere's centre, metres
+  double centreDistance = 0;  // that vertex's distance from the sphere's centre, metres
   int ccdContacts = 0;      // summed over the steps (last iteration of each)
 };
 
@@ -147,6 +148,7 @@ DropResult fastDrop(bool ccd, int steps) {
   const Eigen::MatrixX3d x = rowsOf(solver.positions());
   for (int v = 0; v < x.rows(); ++v) out.inside += x.row(v).norm() < radius;
   out.centreHeight = x(10 * 21 + 10, 1);
+  out.centreDistance = x.row(10 * 21 + 10).norm();
   return out;
 }
 
@@ -161,10 +163,13 @@ TEST(PdCollision, NoMissedCollisionInAFastClothOnSphereDrop) {
               "%d vs %d vertices inside\n", with.centreHeight, without.centreHeight, with.inside, without.inside);
   // Without CCD the vertices over the sphere end inside it or below it: the cloth tunnelled.
   EXPECT_TRUE(without.inside > 0 || without.centreHeight < 0.0);
-  // Later steps keep it outside.
+  // Later steps keep it outside and on top. The cloth balanced on the sphere's top then slides off its centre, one
+  // way or another as round-off decides (the centre vertex 15-23 mm off the axis after 12 steps), so its height is
+  // not held above the top: it stays on the upper half, outside.
   const DropResult later = fastDrop(true, 12);
   EXPECT_EQ(later.inside, 0);
-  EXPECT_GT(later.centreHeight, 0.05);
+  EXPECT_GT(later.centreHeight, 0.0);
+  EXPECT_GT(later.centreDistance, 0.05);
 }
 
 // ---------------------------------------------------------------------------------------------------------------

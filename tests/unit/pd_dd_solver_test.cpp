@@ -244,6 +244,71 @@ TEST(PdSparseCholesky, SubtreeParallelSolveEqualsDenseCholesky) {
   }
 }
 
+// The passes over the columns an interface reaches (the domain-decomposed solve's steps 1 and 4) against Eigen's
+// dense Cholesky: the interface of a cloth's matrix is its border, as a domain's duplicates are. A right-hand side
+// on the border solved forward over the reached columns, then backward in full, is the whole solve; the backward
+// pass over the reached columns of a full forward result is exact on the border. The reached columns are fewer
+// than all. (Without the ancestors of the border's columns the first solve is wrong: checked by mutation.)
+TEST(PdSparseCholesky, PassesOverAnInterfaceEqualDenseCholeskyWhereTheyReach) {
+  GridClothOptions o;
+  o.nx = 30;
+  o.ny = 30;
+  PdSystem sys(makeGridCloth(o), PreviewSettings{});
+  const Eigen::SparseMatrix<double>& k = sys.matrix();
+  const int n = static_cast<int>(k.rows());
+  // The free DOFs on the grid's border (pins excluded by the system).
+  std::vector<int> border;
+  for (int d = 0; d < n; ++d) {
+    const int v = sys.freeVertices()[d], i = v % o.nx, j = v / o.nx;
+    if (i == 0 || j == 0 || i == o.nx - 1 || j == o.ny - 1) border.push_back(d);
+  }
+  ASSERT_GT(border.size(), 50u);
+  SparseCholesky chol;
+  ASSERT_TRUE(chol.factor(k));
+  chol.setInterface(border);
+  EXPECT_LT(chol.interfaceNonZeros(), chol.nonZeros());
+  EXPECT_GE(static_cast<int>(chol.reachedColumns().size()), static_cast<int>(border.size()));
+  const std::vector<int>& perm = chol.permutation();
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+
+  // A right-hand side on the border only.
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(n, 3);
+  for (int d : border)
+    for (int c = 0; c < 3; ++c) b(d, c) = uni(rng);
+  Eigen::MatrixXd expected = Eigen::MatrixXd(k).llt().solve(b);
+  std::vector<double> w(3 * n, 0.0);
+  auto load = [&](const Eigen::MatrixXd& m) {
+    for (int q = 0; q < n; ++q)
+      for (int c = 0; c < 3; ++c) w[3 * q + c] = m(perm[q], c);
+  };
+  auto error = [&](const Eigen::MatrixXd& want, const std::vector<int>& rows) {
+    std::vector<int> position(n);
+    for (int q = 0; q < n; ++q) position[perm[q]] = q;
+    double e = 0.0;
+    for (int d : rows)
+      for (int c = 0; c < 3; ++c) e = std::max(e, std::abs(w[3 * position[d] + c] - want(d, c)));
+    return e / want.cwiseAbs().maxCoeff();
+  };
+  std::vector<int> all(n);
+  for (int d = 0; d < n; ++d) all[d] = d;
+  load(b);
+  chol.forwardOverInterface(w.data());
+  chol.backward(w.data());
+  EXPECT_LT(error(expected, all), 1e-10);
+
+  // A full right-hand side: forward in full, backward over the reached columns, exact on the border.
+  for (int d = 0; d < n; ++d)
+    for (int c = 0; c < 3; ++c) b(d, c) = uni(rng);
+  expected = Eigen::MatrixXd(k).llt().solve(b);
+  load(b);
+  chol.forward(w.data());
+  chol.backwardOverInterface(w.data());
+  EXPECT_LT(error(expected, border), 1e-10);
+  EXPECT_GT(error(expected, all), 1e-3);  // the columns it does not reach are left as the forward pass made them
+
+}
+
 TEST(PdSystemTest, HingeVectorVanishesOnAffineFields) {
   const Eigen::Vector2d r0(0, 0), r1(1.0, 0.1), r2(0.4, 0.8), r3(0.7, -0.9);
   const Eigen::Vector4d k = hingeVector(r0, r1, r2, r3);

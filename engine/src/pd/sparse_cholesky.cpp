@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cholmod.h>
+#include <cstdint>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -44,6 +45,16 @@ inline void solveAndScatter(double* w, int i, const int* index, const double* va
   }
 }
 
+// A column-stored L read by the sequential passes, one column at a time.
+struct ColumnsOfL {
+  const int* start;
+  const int* row;
+  const double* value;
+  const double* invDiagonal;
+  void forward(double* w, int j) const { solveAndScatter(w, j, row, value, start[j] + 1, start[j + 1], invDiagonal[j]); }
+  void backward(double* w, int j) const { solveByDot(w, j, row, value, start[j] + 1, start[j + 1], invDiagonal[j]); }
+};
+
 }  // namespace
 
 bool SparseCholesky::factor(const Eigen::SparseMatrix<double>& input, CholeskySolve mode) {
@@ -52,6 +63,7 @@ bool SparseCholesky::factor(const Eigen::SparseMatrix<double>& input, CholeskySo
   m_rowStart.clear();
   m_column.clear();
   m_rowValue.clear();
+  m_reached.clear();
   if (mode == CholeskySolve::Sequential) return factorWith(input, -1);
   // Minimum degree gives less fill, nested dissection a more even tree: keep the ordering whose solve is shorter
   // (sequential top plus the largest group of subtrees; the factor is computed twice, once per ordering).
@@ -74,6 +86,7 @@ bool SparseCholesky::factorWith(const Eigen::SparseMatrix<double>& input, int or
   m_nonZeros = 0;
   m_n = static_cast<int>(input.rows());
   if (m_n == 0) {
+    m_perm.clear();
     m_colStart.assign(1, 0);
     m_ok = true;
     return true;
@@ -211,14 +224,53 @@ void SparseCholesky::solveInPlace(double* x, double* w) const {
 }
 
 void SparseCholesky::solveSequential(double* w) const {
-  const int* row = m_row.data();
-  const double* value = m_value.data();
-  // L by columns, the diagonal entry first: forward L y = w column by column (scatter), backward L^T z = y a dot
-  // product per column.
-  for (int j = 0; j < m_n; ++j)
-    solveAndScatter(w, j, row, value, m_colStart[j] + 1, m_colStart[j + 1], m_invDiagonal[j]);
-  for (int j = m_n - 1; j >= 0; --j)
-    solveByDot(w, j, row, value, m_colStart[j] + 1, m_colStart[j + 1], m_invDiagonal[j]);
+  forward(w);
+  backward(w);
+}
+
+// L by columns, the diagonal entry first: forward L y = w column by column (a scatter), backward L^T z = y a dot
+// product per column. The columns visited: [0, n) or a list, ascending for the forward pass.
+void SparseCholesky::forward(double* w) const {
+  const ColumnsOfL l{m_colStart.data(), m_row.data(), m_value.data(), m_invDiagonal.data()};
+  for (int j = 0; j < m_n; ++j) l.forward(w, j);
+}
+
+void SparseCholesky::backward(double* w) const {
+  const ColumnsOfL l{m_colStart.data(), m_row.data(), m_value.data(), m_invDiagonal.data()};
+  for (int j = m_n - 1; j >= 0; --j) l.backward(w, j);
+}
+
+// Column j's entries lie in rows below it, its ancestors in the elimination tree (whose parent is the first of
+// them): a forward pass carries a row's value to its ancestors only, and a backward pass computes a row from its
+// ancestors only. So both passes, restricted to the columns an interface reaches, are exact there.
+void SparseCholesky::setInterface(const std::vector<int>& rows) {
+  std::vector<std::uint8_t> reached(m_n, 0);
+  std::vector<int> position(m_n);
+  for (int k = 0; k < m_n; ++k) position[m_perm[k]] = k;
+  for (int r : rows) reached[position[r]] = 1;
+  m_reached.clear();
+  for (int j = 0; j < m_n; ++j) {
+    if (!reached[j]) continue;
+    m_reached.push_back(j);
+    if (m_colStart[j + 1] > m_colStart[j] + 1)
+      reached[*std::min_element(m_row.begin() + m_colStart[j] + 1, m_row.begin() + m_colStart[j + 1])] = 1;
+  }
+}
+
+void SparseCholesky::forwardOverInterface(double* w) const {
+  const ColumnsOfL l{m_colStart.data(), m_row.data(), m_value.data(), m_invDiagonal.data()};
+  for (int j : m_reached) l.forward(w, j);
+}
+
+void SparseCholesky::backwardOverInterface(double* w) const {
+  const ColumnsOfL l{m_colStart.data(), m_row.data(), m_value.data(), m_invDiagonal.data()};
+  for (auto it = m_reached.rbegin(); it != m_reached.rend(); ++it) l.backward(w, *it);
+}
+
+long SparseCholesky::interfaceNonZeros() const {
+  long nz = 0;
+  for (int j : m_reached) nz += m_colStart[j + 1] - m_colStart[j];
+  return nz;
 }
 
 Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& b) const {

@@ -35,6 +35,22 @@ class SparseCholesky {
   // Columns of b (n x k, any k) solved three at a time; returns A^-1 b. For setup, not per iteration.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const;
 
+  // Sequential factors only. The passes in the factor's order (w: n x 3 row-major, w[3 k + c] for row k of
+  // P A P^T): w <- L^-1 w and w <- L^-T w.
+  const std::vector<int>& permutation() const { return m_perm; }  // row k of P A P^T is row permutation()[k] of A
+  void forward(double* w) const;
+  void backward(double* w) const;
+  // An interface: rows of A (setInterface) and their ancestors in the elimination tree, the columns a right-hand
+  // side on the interface reaches (Gilbert-Peierls). forwardOverInterface is the forward pass of a w that is zero
+  // off the interface's rows; backwardOverInterface makes w exact on the reached rows, from a forward result, and
+  // leaves the others as they were. Both read only the reached columns of L (the domain-decomposed solve's
+  // interface; docs/ENGINE.md, pd/sparse_cholesky.h).
+  void setInterface(const std::vector<int>& rows);
+  void forwardOverInterface(double* w) const;
+  void backwardOverInterface(double* w) const;
+  const std::vector<int>& reachedColumns() const { return m_reached; }  // ascending
+  long interfaceNonZeros() const;  // non-zeros of L in the reached columns
+
  private:
   bool factorWith(const Eigen::SparseMatrix<double>& a, int cholmodOrdering);  // < 0: CHOLMOD's choice
   SubtreeGroups planSubtrees() const;  // of the column factor, for the threads of the calling arena
@@ -51,6 +67,7 @@ class SparseCholesky {
   std::vector<int> m_colStart;   // n + 1
   std::vector<int> m_row;
   std::vector<double> m_value;
+  std::vector<int> m_reached;    // the interface's columns and their ancestors, ascending
   // SubtreeParallel: L by rows without the diagonal; the rows of each group of subtrees and of the separators
   // above them (the "top"), ascending.
   std::vector<int> m_rowStart, m_column;
