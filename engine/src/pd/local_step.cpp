@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <random>
 #include <tbb/parallel_for.h>
+#include <unordered_map>
 
 namespace drape::pd {
 
@@ -36,6 +37,7 @@ LocalStep::LocalStep(const PdSystem& system, const std::vector<int>& triangleDom
     dom.freeDof.resize(nl);
     dom.rowOffsets.assign(nl + 1, 0);
     dom.diagonal.assign(nl, 1.0);
+    std::unordered_map<int, int> ghostOf;  // global vertex -> local index of its ghost
     for (int l = 0; l < nl; ++l) {
       const int d = dofOf[dom.vertices[l]];
       dom.freeDof[l] = d;
@@ -46,8 +48,13 @@ LocalStep::LocalStep(const PdSystem& system, const std::vector<int>& triangleDom
             dom.diagonal[l] = it.value();
             continue;
           }
-          const int lu = localOf(u);
-          dom.rowNeighbour.push_back(lu >= 0 ? lu : -(u + 1));
+          int lu = localOf(u);
+          if (lu < 0) {
+            const auto [g, added] = ghostOf.try_emplace(u, nl + static_cast<int>(dom.ghosts.size()));
+            if (added) dom.ghosts.push_back(u);
+            lu = g->second;
+          }
+          dom.rowNeighbour.push_back(lu);
           dom.rowValue.push_back(it.value());
         }
       dom.rowOffsets[l + 1] = static_cast<int>(dom.rowNeighbour.size());
@@ -120,12 +127,14 @@ void LocalStep::gaussSeidel(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& b
     const int nl = static_cast<int>(dom.vertices.size());
     if (dom.triangles.empty()) return;
     thread_local Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> xl, bl;
-    xl.resize(nl, 3);
+    const int ng = static_cast<int>(dom.ghosts.size());
+    xl.resize(nl + ng, 3);
     bl.resize(nl, 3);
     for (int l = 0; l < nl; ++l) {
       xl.row(l) = x.row(dom.vertices[l]);
       if (dom.freeDof[l] >= 0) bl.row(l) = b.row(dom.freeDof[l]);
     }
+    for (int g = 0; g < ng; ++g) xl.row(nl + g) = x.row(dom.ghosts[g]);  // not moved by this sweep
     const std::vector<int>& order = dom.orders[iteration % m_orders];
     const int count = static_cast<int>(order.size());
     for (int pass = 0; pass < 2 * count; ++pass) {
@@ -151,13 +160,8 @@ void LocalStep::gaussSeidel(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& b
         const int l = lv[c];
         if (dom.freeDof[l] < 0) continue;
         Eigen::RowVector3d acc = bl.row(l);
-        for (int e = dom.rowOffsets[l]; e < dom.rowOffsets[l + 1]; ++e) {
-          const int nb = dom.rowNeighbour[e];
-          if (nb >= 0)
-            acc -= dom.rowValue[e] * xl.row(nb);
-          else
-            acc -= dom.rowValue[e] * x.row(-nb - 1);
-        }
+        for (int e = dom.rowOffsets[l]; e < dom.rowOffsets[l + 1]; ++e)
+          acc -= dom.rowValue[e] * xl.row(dom.rowNeighbour[e]);
         xl.row(l) = acc / dom.diagonal[l];
       }
     }

@@ -44,9 +44,9 @@ class LocalStep {
     std::vector<int> triangles;                // global triangle ids
     std::vector<std::array<int, 3>> local;     // per triangle: local vertex indices
     std::vector<std::vector<int>> orders;      // permutations of local triangle indices
-    // K row of each local vertex (free ones): CSR over (neighbour, value); neighbour >= 0 local, else
-    // -(global vertex + 1) read from the shared positions.
-    std::vector<int> rowOffsets, rowNeighbour;
+    // K row of each local vertex (free ones): CSR over (neighbour, value). A neighbour outside the domain's
+    // triangles is a ghost: local index vertices.size() + g for ghosts[g], read from the shared positions.
+    std::vector<int> rowOffsets, rowNeighbour, ghosts;
     std::vector<double> rowValue, diagonal;
     std::vector<int> freeDof;                  // local -> free DOF or -1 (pinned)
   };
