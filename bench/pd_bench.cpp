@@ -1,4 +1,6 @@
-// Preview (PD-DD) benchmarks, run by hand: `drape_pd_bench [--quick] [global|local|iteration|contact]` and
+// Preview (PD-DD) benchmarks, run by hand: `drape_pd_bench [--quick] [global|local|iteration|contact]`,
+// `drape_pd_bench solve [SIDE] [D] [REPS]` (the DD global solve alone on a SIDE x SIDE hanging cloth, 2 threads:
+// minimum, median and 90th percentile of REPS solves; default 317 16 100, i.e. 100k vertices) and
 // `drape_pd_bench interactive [SCENE] [--from DRAPED.obj] [--steps N] [--cap SECONDS] [--only VARIANT] [--verbose]`
 // (--from: start from the vertex positions of an OBJ the garment was written to, e.g. by drape --simulate). Prints Markdown
 // tables for docs/BENCHMARKS.md: global solve DD vs monolithic CHOLMOD (pd-dd Fig. 9), Gauss-Seidel vs Jacobi
@@ -391,6 +393,34 @@ void interactiveTable(const std::string& sceneFile, const std::string& from, int
   }
 }
 
+// The DD global solve alone, repeated: its spread over many solves in one process is what tells a change to it
+// from the VM's noise (compare the minima of builds run alternately).
+void solveSpread(int side, int d, int reps) {
+  const newton::ClothModel model = grid(side);
+  PdSystem sys(model, PreviewSettings{});
+  std::mt19937 rng(3);
+  std::normal_distribution<double> normal;
+  Eigen::MatrixX3d b(sys.freeCount(), 3);
+  for (int i = 0; i < b.rows(); ++i)
+    for (int c = 0; c < 3; ++c) b(i, c) = normal(rng);
+  tbb::task_arena arena(2);
+  arena.execute([&] {
+    const auto part = partitionTriangles(model.triangles, model.numVertices(), {}, d);
+    DomainDecomposedSolver dd(splitSystem(sys, part, d), sys.freeCount());
+    Eigen::MatrixX3d x;
+    for (int i = 0; i < 5; ++i) dd.solve(b, x);  // first touches, not timed
+    std::vector<double> t;
+    for (int i = 0; i < reps; ++i) {
+      const auto t0 = Clock::now();
+      dd.solve(b, x);
+      t.push_back(since(t0));
+    }
+    std::sort(t.begin(), t.end());
+    std::printf("| %d | %d | 2 | %d | %.2f | %.2f | %.2f |\n", side * side, d, reps, 1e3 * t.front(),
+                1e3 * t[t.size() / 2], 1e3 * t[t.size() * 9 / 10]);
+  });
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -416,6 +446,17 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "drape_pd_bench: %s\n", e.what());
       return 1;
     }
+    return 0;
+  }
+  if (argc > 1 && std::strcmp(argv[1], "solve") == 0) {
+    const int side = argc > 2 ? std::atoi(argv[2]) : 317, d = argc > 3 ? std::atoi(argv[3]) : 16;
+    const int reps = argc > 4 ? std::atoi(argv[4]) : 100;
+    if (side < 2 || d < 1 || reps < 1) {
+      std::fprintf(stderr, "drape_pd_bench solve: SIDE >= 2, D >= 1 and REPS >= 1 expected\n");
+      return 1;
+    }
+    std::printf("| vertices | D | threads | solves | min ms | median ms | p90 ms |\n|---|---|---|---|---|---|---|\n");
+    solveSpread(side, d, reps);
     return 0;
   }
   for (int i = 1; i < argc; ++i) {
