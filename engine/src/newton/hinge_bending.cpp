@@ -323,6 +323,16 @@ void HingeBending::batchGradients(const Eigen::VectorXd& x, const int* ids, int 
   const double foldFactor = fold ? fold->factor() : 0.0;
   for (int i0 = 0; i0 < count; i0 += kLanes) {
     const int lanes = std::min(kLanes, count - i0);
+    // The next batch's hinges and folded start gradients, requested ahead: on a reordered matrix the stencils are
+    // visited by storage row, not by index, so these reads do not stream.
+    for (int l = 0; l < kLanes && i0 + kLanes + l < count; ++l) {
+      const int s = ids[i0 + kLanes + l];
+      prefetchRange(&m_hinges[s], sizeof(Hinge));
+      if (fold) {
+        prefetchRange(fold->startGradient(s).data(), sizeof(Grad12));
+        __builtin_prefetch(&fold->startOffset(s));
+      }
+    }
     alignas(64) double q[12][kLanes], gr[12][kLanes], gd[12][kLanes], ge[12][kLanes];
     // The wing fades' 1 / (ratio rest), and 1 where a wing has no rest length (no fade: t = 1).
     alignas(64) double invScale[2][kLanes], noFade[2][kLanes];
@@ -474,6 +484,12 @@ void HingeBending::assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockM
   m_stencils.forEach(m_options.parallel, [&](const int* ids, int count) {
     for (int i = 0; i < count; ++i) {
       const int s = ids[i];
+      if (i + kPrefetchAhead < count) {
+        const int next = ids[i + kPrefetchAhead];
+        m_stencils.prefetch(next);
+        prefetchRange(&m_hinges[next], sizeof(Hinge));
+        if (fold) prefetchRange(fold->startGradient(next).data(), sizeof(Grad12));
+      }
       const Hinge& h = m_hinges[s];
       const HingeCoords q = gatherHinge(h, x);
       double phi = 0.0;

@@ -170,6 +170,12 @@ void StvkMembrane::batchGradients(const Eigen::VectorXd& x, const int* ids, int 
   constexpr int kLanes = 8;
   for (int i0 = 0; i0 < count; i0 += kLanes) {
     const int lanes = std::min(kLanes, count - i0);
+    // The next batch's elements and folded start F, requested ahead (see HingeBending::batchGradients).
+    for (int l = 0; l < kLanes && i0 + kLanes + l < count; ++l) {
+      const int s = ids[i0 + kLanes + l];
+      prefetchRange(&m_elements[s], sizeof(MembraneElement));
+      if (fold) prefetchRange(fold->startF(s).data(), sizeof(Eigen::Matrix<double, 3, 2>));
+    }
     alignas(64) double p[9][kLanes], c[6][kLanes], k[3][kLanes], fn[6][kLanes], f[6][kLanes], ge[9][kLanes];
     for (int l = 0; l < kLanes; ++l) {
       const bool live = l < lanes;
@@ -298,6 +304,12 @@ void StvkMembrane::assemble(const Eigen::VectorXd& x, Eigen::VectorXd* g, BlockM
     std::array<Eigen::Matrix3d, 6> blocks;
     for (int i = 0; i < count; ++i) {
       const int s = ids[i];
+      if (i + kPrefetchAhead < count) {
+        const int next = ids[i + kPrefetchAhead];
+        m_stencils.prefetch(next);
+        prefetchRange(&m_elements[next], sizeof(MembraneElement));
+        if (fold) prefetchRange(fold->startF(next).data(), sizeof(Eigen::Matrix<double, 3, 2>));
+      }
       const MembraneElement& e = m_elements[s];
       const Eigen::Matrix<double, 3, 2> f = deformationGradient(e, x);
       const Eigen::Vector3d w = (m_scale * e.area) * voigtWeights(e);

@@ -111,7 +111,7 @@ class BendingDissipation : public LaggedDissipation {
   void setGradientSource(const HingeBending* bending) { m_source = bending; }
   // This step's g and o of hinge s, and c / k_e = beta / h (times the ramp).
   const Eigen::Matrix<double, 12, 1>& startGradient(int s) const { return m_gradients[s]; }
-  double startOffset(int s) const { return m_offsets[s]; }
+  const double& startOffset(int s) const { return m_offsets[s]; }
   double factor() const { return m_factor; }
 
  private:
