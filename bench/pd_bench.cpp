@@ -59,6 +59,16 @@ newton::ClothModel grid(int n) {
   return makeGridCloth(o);
 }
 
+// A right-hand side of the global step (|free| x 3) with standard normal entries, the same for every run.
+Eigen::MatrixX3d randomRightHandSide(const PdSystem& sys) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> normal;
+  Eigen::MatrixX3d b(sys.freeCount(), 3);
+  for (int i = 0; i < b.rows(); ++i)
+    for (int c = 0; c < 3; ++c) b(i, c) = normal(rng);
+  return b;
+}
+
 void globalSolveTable(bool quick) {
   std::printf("\n### Global solve: domain-decomposed vs monolithic CHOLMOD (pd-dd Fig. 9)\n\n");
   std::printf("Square hanging cloth, two pinned corners; DOF = 3 x vertices (the paper's count). Time per solve of\n"
@@ -69,11 +79,7 @@ void globalSolveTable(bool quick) {
   for (int n : sizes) {
     const newton::ClothModel model = grid(n);
     PdSystem sys(model, PreviewSettings{});
-    std::mt19937 rng(3);
-    std::normal_distribution<double> normal;
-    Eigen::MatrixX3d b(sys.freeCount(), 3);
-    for (int i = 0; i < b.rows(); ++i)
-      for (int c = 0; c < 3; ++c) b(i, c) = normal(rng);
+    const Eigen::MatrixX3d b = randomRightHandSide(sys);
     const int reps = n > 200 ? 10 : 20;
     std::map<int, double> mono;
     for (int threads : {1, 2}) {
@@ -398,11 +404,7 @@ void interactiveTable(const std::string& sceneFile, const std::string& from, int
 void solveSpread(int side, int d, int reps) {
   const newton::ClothModel model = grid(side);
   PdSystem sys(model, PreviewSettings{});
-  std::mt19937 rng(3);
-  std::normal_distribution<double> normal;
-  Eigen::MatrixX3d b(sys.freeCount(), 3);
-  for (int i = 0; i < b.rows(); ++i)
-    for (int c = 0; c < 3; ++c) b(i, c) = normal(rng);
+  const Eigen::MatrixX3d b = randomRightHandSide(sys);
   tbb::task_arena arena(2);
   arena.execute([&] {
     const auto part = partitionTriangles(model.triangles, model.numVertices(), {}, d);

@@ -212,14 +212,19 @@ TEST(PdSubtreeGroups, SplitsBalancedTreesAndKeepsDependenciesInsideGroups) {
   EXPECT_GT(split, 10);
 }
 
+// A 30 x 30 grid cloth: its system matrix is a 2D mesh's, whose elimination tree splits.
+GridClothOptions gridOptions30() {
+  GridClothOptions o;
+  o.nx = 30;
+  o.ny = 30;
+  return o;
+}
+
 // The subtree-parallel solve (groups of independent subtrees on several threads, then the separators above them)
 // against Eigen's dense Cholesky, on the system matrix of a cloth (a 2D mesh, so the elimination tree splits), in
 // an arena of 4 threads and one of 1 (no groups: the sequential solve).
 TEST(PdSparseCholesky, SubtreeParallelSolveEqualsDenseCholesky) {
-  GridClothOptions o;
-  o.nx = 30;
-  o.ny = 30;
-  PdSystem sys(makeGridCloth(o), PreviewSettings{});
+  const PdSystem sys(makeGridCloth(gridOptions30()), PreviewSettings{});
   const Eigen::SparseMatrix<double>& k = sys.matrix();
   const int n = static_cast<int>(k.rows());
   std::mt19937 rng(5);
@@ -250,10 +255,8 @@ TEST(PdSparseCholesky, SubtreeParallelSolveEqualsDenseCholesky) {
 // pass over the reached columns of a full forward result is exact on the border. The reached columns are fewer
 // than all. (Without the ancestors of the border's columns the first solve is wrong: checked by mutation.)
 TEST(PdSparseCholesky, PassesOverAnInterfaceEqualDenseCholeskyWhereTheyReach) {
-  GridClothOptions o;
-  o.nx = 30;
-  o.ny = 30;
-  PdSystem sys(makeGridCloth(o), PreviewSettings{});
+  const GridClothOptions o = gridOptions30();
+  const PdSystem sys(makeGridCloth(o), PreviewSettings{});
   const Eigen::SparseMatrix<double>& k = sys.matrix();
   const int n = static_cast<int>(k.rows());
   // The free DOFs on the grid's border (pins excluded by the system).
