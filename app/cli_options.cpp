@@ -33,10 +33,11 @@ std::string usageText() {
   drape [SCENE.json]                      open the desktop application (default scene if none given)
   drape --info FILE [scene options]       describe a pattern, scene or avatar file
   drape --simulate SCENE -o OUT.(obj|glb|ply|stl) [--solver none|preview|drape|full] [--stats STATS.json] [--max-sim-time S]
-                                          [--png OUT.png [--view V] [--size WxH] [--mode M]]
+                                          [--from STATE.obj] [--png OUT.png [--view V] [--size WxH] [--mode M]]
                                           build the garment, run the solver, write the garment (and a picture)
   drape --render SCENE -o OUT.png [--view front|back|left|right|three-quarter|all] [--size WxH]
                                           [--mode shaded|wireframe|strain|domains|contacts] [--simulate none|preview|drape|full]
+                                          [--from STATE.obj]
                                           render a PNG headless (no display server needed)
   drape --render BODY.(obj|glb|gltf|fbx|ply|stl) -o OUT.png [--avatar-units U] [--view V] [--size WxH]
                                           render a body mesh on its own (mannequin previews)
@@ -60,6 +61,8 @@ Solvers (--solver for --simulate and --bench, --simulate for --render; default: 
   preview  the fast PD-DD preview until it settles
   drape    the Backward-Euler Newton drape from the placed garment until at rest or solver.max_sim_time
   full     the preview, then the Newton drape from the preview state
+  --from STATE.obj starts the stage at the vertex positions of an OBJ that drape wrote for the same scene (none: that
+  state as it is; preview, full: the preview from it at rest; drape: the drape from it as from a preview's hand-over)
 Exit status: 0 on success, 1 on bad input or failure (one line on stderr names the file and the problem).
 )";
 }
@@ -138,6 +141,8 @@ CliOptions parseCommandLine(int argc, char** argv) {
       }
       if (!(o.maxSimTime > 0) || !std::isfinite(o.maxSimTime))
         throw InputError(a + ": '" + s + "' is not a positive number of seconds");
+    } else if (a == "--from") {
+      o.from = value(i, a);
     } else if (a == "--avatar") {
       o.scene.avatarFile = value(i, a);
     } else if (a == "--avatar-units") {
@@ -167,6 +172,8 @@ CliOptions parseCommandLine(int argc, char** argv) {
                                  : o.mode == Mode::Simulate ? "--simulate"
                                                             : "--make-avatar") +
                      ": missing -o OUTPUT");
+  if (!o.from.empty() && o.mode != Mode::Simulate && o.mode != Mode::Render)
+    throw InputError("--from: only with --simulate or --render");
   return o;
 }
 

@@ -23,6 +23,7 @@ struct CliOptions {
   std::string renderMode = "shaded";   // --mode
   int width = 1024, height = 768;      // --size WxH
   double maxSimTime = -1.0;            // --max-sim-time
+  std::string from;                    // --from STATE.obj (simulate, render): the stage starts at its positions
   std::vector<std::string> sweeps;     // --sweep KEY=V1,V2 (bench)
 };
 

@@ -17,21 +17,23 @@
 #include "drape/sim/simulation.h"
 #include "drape/sim/snapshot_builder.h"
 #include "scene_request.h"
+#include "start_state.h"
 
 namespace drape::app {
 namespace {
 
 // Runs the scene's stage (none: the placed garment) and returns what to draw.
-Snapshot stageSnapshot(Scene scene, std::ostream& out) {
+Snapshot stageSnapshot(Scene scene, const std::string& from, std::ostream& out) {
   if (scene.settings.text("solver.stage") == "none") {
     Diagnostics diagnostics;
     const Garment garment = buildSceneGarment(scene, &diagnostics);
     resolvePins(scene, garment);  // validates the pins
     printWarnings(scene.diagnostics.warnings(), out);
     printWarnings(diagnostics.warnings(), out);
-    return makeSnapshot(scene, garment, garment.positions);
+    return makeSnapshot(scene, garment, placedOrFrom(garment, from));
   }
-  Simulation simulation(std::move(scene));
+  const std::unique_ptr<Simulation> started = startSimulation(std::move(scene), from);
+  Simulation& simulation = *started;
   printWarnings(simulation.scene().diagnostics.warnings(), out);  // the scene's and the garment mesher's
   StepReport last;
   while (!simulation.finished()) {
@@ -87,7 +89,7 @@ int runRender(const CliOptions& options, std::ostream& out) {
   }
   Scene scene = loadScene(requestWithStage(options));
   const SceneCamera camera = sceneCamera(scene.settings);
-  const Snapshot snapshot = stageSnapshot(std::move(scene), out);
+  const Snapshot snapshot = stageSnapshot(std::move(scene), options.from, out);
   renderToPng(snapshot, options, camera, options.output, out);
   return 0;
 }

@@ -13,6 +13,7 @@
 #include "drape/sim/simulation.h"
 #include "drape/sim/snapshot_builder.h"
 #include "scene_request.h"
+#include "start_state.h"
 
 namespace drape::app {
 namespace {
@@ -68,16 +69,18 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
     warnings = scene.diagnostics.warnings();
     warnings.insert(warnings.end(), diagnostics.warnings().begin(), diagnostics.warnings().end());
     printWarnings(warnings, out);
-    exportGarment(garment, garment.positions, options.output);
-    if (!options.png.empty())
-      renderToPng(makeSnapshot(scene, garment, garment.positions), options, camera, options.png, out);
-    stats = {{"status", "Placed"}, {"steps", 0}, {"sim_time_s", 0.0}, {"terms", nlohmann::json::array()},
+    const Eigen::MatrixX3d positions = placedOrFrom(garment, options.from);
+    exportGarment(garment, positions, options.output);
+    if (!options.png.empty()) renderToPng(makeSnapshot(scene, garment, positions), options, camera, options.png, out);
+    stats = {{"status", options.from.empty() ? "Placed" : "FromState"}, {"steps", 0}, {"sim_time_s", 0.0}, {"terms", nlohmann::json::array()},
              {"per_step", nlohmann::json::array()}, {"vertices", garment.vertexCount()},
              {"triangles", garment.triangleCount()}, {"pinned_vertices", pinned.size()}};
     out << "wrote " << options.output << " (" << garment.vertexCount() << " vertices, " << garment.triangleCount()
-        << " triangles, placed garment)\n";
+        << " triangles, " << (options.from.empty() ? "placed garment" : "the state of " + options.from) << ")\n";
   } else {
-    Simulation simulation(std::move(scene));
+    const std::unique_ptr<Simulation> started = startSimulation(std::move(scene), options.from);
+    Simulation& simulation = *started;
+    if (!options.from.empty()) out << "starting the " << stage << " stage from " << options.from << "\n";
     warnings = simulation.scene().diagnostics.warnings();  // the scene's and the garment mesher's
     printWarnings(warnings, out);
     const auto terms = simulation.terms();
@@ -140,6 +143,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
   const double wall = secondsSince(start);
   stats["wall_time_s"] = wall;
   stats["solver"] = stage;
+  if (!options.from.empty()) stats["from"] = options.from;
   stats["warnings"] = warnings;
   if (!options.stats.empty()) writeFileAtomically(options.stats, stats.dump(2) + "\n");
   return stats["status"] == "Diverged" ? 3 : 0;

@@ -90,6 +90,16 @@ double previewCourantLimitOf(const Scene& scene) {
   return limit;
 }
 
+ResumeState startStateAt(const std::string& stage, const Eigen::MatrixX3d& positions) {
+  ResumeState state;
+  state.vertexCount = static_cast<int>(positions.rows());
+  state.positions = positions;
+  state.velocities = Eigen::MatrixX3d::Zero(positions.rows(), 3);
+  state.stage = stage == "drape" ? "drape" : "preview";
+  if (state.stage == "drape") state.previewPositions = positions;
+  return state;
+}
+
 Simulation::Simulation(Scene scene) : m_scene(std::move(scene)) { build(nullptr); }
 
 Simulation::Simulation(Scene scene, const ResumeState& from) : m_scene(std::move(scene)) { build(&from); }

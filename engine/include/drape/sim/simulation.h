@@ -73,6 +73,12 @@ struct ResumeState {
   bool previewTargetsFreed = false;  // the preview started over with contact targets not held before it was sewn
 };
 
+// The state the scene's stage starts from at given vertex positions (|V| x 3, metres; drape --from): stages
+// preview and full run the preview from them at rest, at time 0 (its quasi-static start included); stage drape
+// runs the drape from them as from a preview's hand-over (velocities zero, no relaxation unless
+// solver.newton.relaxation_after_preview, h_max times solver.newton.h_max_factor_after_preview).
+ResumeState startStateAt(const std::string& stage, const Eigen::MatrixX3d& positions);
+
 class Simulation {
  public:
   // Builds the garment, pins and the solver terms the scene needs; throws InputError for bad scenes.
