@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "drape/core/input_error.h"
+#include "drape/io/mesh_export.h"
 #include "drape/qt/fabric_panel.h"
 #include "drape/qt/scene_panel.h"
 #include "drape/qt/settings_table.h"
@@ -208,6 +209,42 @@ TEST_F(MainWindowTest, ExportWritesTheDrapedPositionsAndScreenshotWritesAPng) {
   EXPECT_FALSE(window->exportGarment(testOutputDir() / "garment.xyz"));
   ASSERT_EQ(dialogs.errors.size(), 1u);
   EXPECT_NE(dialogs.errors[0].find("garment.xyz"), std::string::npos);
+}
+
+TEST_F(MainWindowTest, LoadedGarmentStateIsShownAndTheDrapeContinuesFromIt) {
+  const auto placed = window->currentSnapshot();
+  Eigen::MatrixX3d lifted = placed->positions;
+  lifted.col(1).array() += 0.03;
+  const std::filesystem::path obj = testOutputDir() / "gui_state.obj";
+  drape::exportGarment(*window->document()->garment(), lifted, obj);
+
+  ASSERT_TRUE(window->loadGarmentState(obj)) << (dialogs.errors.empty() ? "" : dialogs.errors[0]);
+  ASSERT_TRUE(waitUntil([&] {
+    const auto s = window->currentSnapshot();
+    return s && (s->positions - lifted).cwiseAbs().maxCoeff() < 1e-6;
+  }));
+  EXPECT_FALSE(window->undoAction()->isEnabled()) << "loading a state is not an edit of the scene";
+  // The worker's simulation starts from it (this scene's stage is drape: the drape, as from a preview's hand-over).
+  ASSERT_TRUE(waitUntil([&] { return window->controller()->latestResumeState().has_value(); }));
+  const ResumeState resume = *window->controller()->latestResumeState();
+  EXPECT_EQ(resume.stage, "drape");
+  ASSERT_EQ(resume.previewPositions.rows(), lifted.rows());
+  EXPECT_LT((resume.previewPositions - lifted).cwiseAbs().maxCoeff(), 1e-6);
+  drapeSteps(1);
+  EXPECT_GT(window->currentSnapshot()->time, 0.0);
+  EXPECT_EQ(window->currentSnapshot()->stage, "drape");
+  EXPECT_TRUE(dialogs.errors.empty());
+
+  // Another garment's state: the dialog names the file, the running state stays.
+  const std::filesystem::path other = testOutputDir() / "gui_state_other.obj";
+  std::ofstream(other) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const auto before = window->currentSnapshot();
+  EXPECT_FALSE(window->loadGarmentState(other));
+  ASSERT_EQ(dialogs.errors.size(), 1u);
+  EXPECT_NE(dialogs.errors[0].find("gui_state_other.obj: 3 vertices, the scene's garment has"), std::string::npos)
+      << dialogs.errors[0];
+  QTest::qWait(100);
+  EXPECT_EQ(window->currentSnapshot(), before);
 }
 
 TEST_F(MainWindowTest, UnsavedChangesPromptOnClose) {

@@ -74,6 +74,9 @@ void MainWindow::createActions() {
   m_export = new QAction(tr("&Export Draped Garment..."), this);
   m_export->setShortcut(QKeySequence(tr("Ctrl+E")));
   connect(m_export, &QAction::triggered, this, &MainWindow::onExport);
+  m_loadState = new QAction(tr("&Load Garment State..."), this);
+  m_loadState->setToolTip(tr("Continue from a garment exported earlier as OBJ for this scene"));
+  connect(m_loadState, &QAction::triggered, this, &MainWindow::onLoadState);
   m_screenshot = new QAction(tr("Save Screens&hot..."), this);
   m_screenshot->setShortcut(QKeySequence(tr("Ctrl+Alt+S")));
   connect(m_screenshot, &QAction::triggered, this, &MainWindow::onScreenshot);
@@ -130,6 +133,7 @@ void MainWindow::createMenus() {
   file->addAction(m_saveAs);
   file->addSeparator();
   file->addAction(m_export);
+  file->addAction(m_loadState);
   file->addAction(m_screenshot);
   file->addSeparator();
   file->addAction(m_quit);
@@ -319,6 +323,7 @@ void MainWindow::updateActions() {
   m_save->setEnabled(scene);
   m_saveAs->setEnabled(scene);
   m_export->setEnabled(scene);
+  m_loadState->setEnabled(scene);
   m_screenshot->setEnabled(scene);
   m_openAvatar->setEnabled(scene);
 }

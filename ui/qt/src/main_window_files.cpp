@@ -83,6 +83,12 @@ bool MainWindow::exportGarment(const std::filesystem::path& file) {
   return true;
 }
 
+bool MainWindow::loadGarmentState(const std::filesystem::path& file) {
+  if (!m_document->loadGarmentState(file)) return false;  // the document's error reaches the dialog
+  log(tr("info"), tr("Loaded the garment state %1; Preview or Drape continues from it").arg(toQString(file)));
+  return true;
+}
+
 bool MainWindow::saveScreenshot(const std::filesystem::path& file) {
   const QImage image = m_viewport->grabFramebuffer();
   try {
@@ -121,6 +127,12 @@ void MainWindow::onExport() {
                                                     tr("Wavefront OBJ (*.obj);;glTF binary (*.glb);;glTF (*.gltf);;"
                                                        "PLY (*.ply);;STL (*.stl)"));
   if (!file.isEmpty()) exportGarment(toPath(file));
+}
+
+void MainWindow::onLoadState() {
+  const QString file =
+      QFileDialog::getOpenFileName(this, tr("Load garment state"), QString(), tr("Garment state, Wavefront OBJ (*.obj)"));
+  if (!file.isEmpty()) loadGarmentState(toPath(file));
 }
 
 void MainWindow::onScreenshot() {

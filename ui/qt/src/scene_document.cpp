@@ -7,6 +7,7 @@
 
 #include "drape/core/input_error.h"
 #include "drape/io/atomic_file.h"
+#include "drape/io/garment_state.h"
 #include "drape/scene/pins.h"
 
 namespace drape::qt {
@@ -213,6 +214,35 @@ bool SceneDocument::change(const SceneState& next, const QString& text) {
     return true;
   }
   m_undo.push(new StateCommand(this, m_state, next, std::move(built), text));
+  return true;
+}
+
+bool SceneDocument::loadGarmentState(const std::filesystem::path& file) {
+  if (!m_scene || !m_garment) {
+    emit errorOccurred(QString::fromStdString(file.string() + ": open a scene before loading a garment state"));
+    return false;
+  }
+  std::shared_ptr<Simulation> simulation;
+  try {
+    const GarmentState state = readGarmentState(file);
+    checkGarmentState(state, *m_garment, file);
+    Scene running = *m_scene;
+    const std::string stage = running.settings.text("solver.stage");
+    const std::string startStage = stage == "drape" || stage == "preview" ? stage : "full";
+    running.settings.set("solver.stage", startStage, "simulation");
+    simulation = std::make_shared<Simulation>(std::move(running), startStateAt(startStage, state.positions));
+    if (!simulation->resumed())
+      throw InputError(file.string() + ": " +
+                       (simulation->previewFailure().empty() ? "the simulation cannot start from this state"
+                                                             : simulation->previewFailure()));
+  } catch (const InputError& e) {
+    emit errorOccurred(QString::fromStdString(e.what()));
+    return false;
+  } catch (const std::exception& e) {  // an engine bug: still reported, never a crash of the UI
+    emit errorOccurred(QString::fromStdString(file.string() + ": unexpected error: " + e.what()));
+    return false;
+  }
+  emit sceneChanged(std::move(simulation));
   return true;
 }
 

@@ -44,6 +44,9 @@ class MainWindow : public QMainWindow {
   bool exportGarment(const std::filesystem::path& file);
   // Saves the viewport's current frame as a PNG (atomically).
   bool saveScreenshot(const std::filesystem::path& file);
+  // Continues the scene from a garment state exported earlier (.obj; SceneDocument::loadGarmentState). On error
+  // the dialog names the file and the current state stays. Returns success.
+  bool loadGarmentState(const std::filesystem::path& file);
 
   SceneDocument* document() const { return m_document; }
   SimulationController* controller() const { return m_controller; }
@@ -86,6 +89,7 @@ class MainWindow : public QMainWindow {
   void onOpenAvatar();
   void onSaveAs();
   void onExport();
+  void onLoadState();
   void onScreenshot();
 
   std::unique_ptr<UserDialogs> m_ownDialogs;
@@ -108,6 +112,7 @@ class MainWindow : public QMainWindow {
   QAction* m_save = nullptr;
   QAction* m_saveAs = nullptr;
   QAction* m_export = nullptr;
+  QAction* m_loadState = nullptr;
   QAction* m_screenshot = nullptr;
   QAction* m_quit = nullptr;
   QAction* m_undo = nullptr;

@@ -80,6 +80,13 @@ class SceneDocument : public QObject {
   // state, a drape from its last preview state. Undo and redo continue the same way.
   void setResumeSource(std::function<std::optional<ResumeState>()> source) { m_resumeSource = std::move(source); }
 
+  // Continues the current scene from a garment state: the vertex positions of an OBJ that Export (or drape
+  // --simulate) wrote for this garment (drape::readGarmentState, checkGarmentState). The preview starts from them at
+  // rest (a scene whose stage is drape: the drape, as from a preview's hand-over). The scene is not edited, so
+  // nothing is pushed on the undo stack; later edits continue from the running state as usual. On InputError (the
+  // file cannot be read, or belongs to another garment) emits errorOccurred and returns false: nothing changes.
+  bool loadGarmentState(const std::filesystem::path& file);
+
   // Writes the scene file atomically (drape::writeFileAtomically) and marks the document clean; throws
   // InputError when it cannot be written.
   void save(const std::filesystem::path& file);
