@@ -63,7 +63,7 @@ bool ContactFactor::updateFactor(const std::vector<double>& weight) {
   for (int d = 0; d < n; ++d) {
     if (weight[d] > m_weight[d]) up.push_back(d);
     else if (weight[d] < m_weight[d]) down.push_back(d);
-    if (static_cast<int>(up.size() + down.size()) > kMaxUpdates) return false;
+    if (static_cast<int>(up.size() + down.size()) > maxUpdates(n)) return false;
   }
   // L L^T = P A P^T: the columns of C (sqrt(|dw|) e_d) are given in the factor's permuted row order.
   const int* perm = static_cast<const int*>(c.factor->Perm);

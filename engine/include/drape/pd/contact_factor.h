@@ -3,7 +3,7 @@
 //   (K + Delta K) x = b + S^T W p,   Delta K = S^T W S diagonal on the colliding DOFs,
 // solved with a CHOLMOD Cholesky factor of K + Delta K. The fill-reducing ordering and symbolic analysis of K are
 // computed once (Delta K only adds to K's diagonal, so the pattern never changes). When the contact DOFs or weights
-// change between calls by at most kMaxUpdates DOFs, the factor is modified by CHOLMOD's rank-k update (DOFs that
+// change between calls by at most maxUpdates(n) DOFs, the factor is modified by CHOLMOD's rank-k update (DOFs that
 // joined, or whose weight grew) and downdate (left, or weight shrank), otherwise refactorised; every call is then a
 // pair of triangular solves for the three coordinates. Exact up to rounding, unlike the dual + PCG solves of contact_solve.h, and at a few
 // thousand DOFs far cheaper than their tens of collision-free solves per L-G iteration; the domain decomposition is
@@ -30,8 +30,12 @@ class ContactFactor {
   bool solve(const ContactSet& contacts, Eigen::MatrixX3d& x);
   int factorisations() const { return m_factorisations; }  // numeric factorisations so far
   int updates() const { return m_updates; }                // calls that modified the factor by update/downdate
-  // Changed DOFs up to which the factor is updated rather than refactorised.
-  static constexpr int kMaxUpdates = 64;
+  // Changed DOFs up to which the factor of an n x n K is updated rather than refactorised: 64, or n / 32 on larger
+  // systems. An update costs about a path of the elimination tree per changed DOF, a refactorisation the whole
+  // factor; on the 1 cm t-shirt (10,456 DOFs) 0.04-0.08 ms per changed DOF against 29 ms, so a fixed 64 sent the
+  // assembly's large changes (66 of its 787 solves) to refactorisations costing as much as 400-700 updates
+  // (docs/BENCHMARKS.md, "Stop 44").
+  static int maxUpdates(int n) { return n / 32 > 64 ? n / 32 : 64; }
 
  private:
   struct Cholmod;
