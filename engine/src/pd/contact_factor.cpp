@@ -1,10 +1,47 @@
 #include "drape/pd/contact_factor.h"
 
 #include <cholmod.h>
+#include <tbb/parallel_invoke.h>
 
+#include <array>
 #include <cmath>
 
 namespace drape::pd {
+namespace {
+
+// Columns [first, first + C) of X = A^-1 B for A = P^T L D L^T P, with L the unit lower triangular factor of a
+// simplicial LDL^T CHOLMOD factor (D on its diagonal, each column's entries sorted, the diagonal first; columns may
+// be unpacked after updates: nz counts the used entries). b, x: n x 3, column-major. The C columns go through L
+// together, so L is read once per pass for them.
+template <int C>
+void solveLdlColumns(const cholmod_factor& factor, const double* b, double* x, int first) {
+  const int n = static_cast<int>(factor.n);
+  const int* colStart = static_cast<const int*>(factor.p);
+  const int* count = static_cast<const int*>(factor.nz);
+  const int* row = static_cast<const int*>(factor.i);
+  const double* value = static_cast<const double*>(factor.x);
+  const int* perm = static_cast<const int*>(factor.Perm);
+  std::vector<std::array<double, C>> y(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k)
+    for (int c = 0; c < C; ++c) y[k][c] = b[static_cast<size_t>(first + c) * n + perm[k]];
+  for (int j = 0; j < n; ++j) {  // L y = P b
+    const std::array<double, C> yj = y[j];
+    for (int p = colStart[j] + 1; p < colStart[j] + count[j]; ++p)
+      for (int c = 0; c < C; ++c) y[row[p]][c] -= value[p] * yj[c];
+  }
+  for (int j = 0; j < n; ++j)  // D
+    for (int c = 0; c < C; ++c) y[j][c] /= value[colStart[j]];
+  for (int j = n - 1; j >= 0; --j) {  // L^T z = y
+    std::array<double, C> s = y[j];
+    for (int p = colStart[j] + 1; p < colStart[j] + count[j]; ++p)
+      for (int c = 0; c < C; ++c) s[c] -= value[p] * y[row[p]][c];
+    y[j] = s;
+  }
+  for (int k = 0; k < n; ++k)
+    for (int c = 0; c < C; ++c) x[static_cast<size_t>(first + c) * n + perm[k]] = y[k][c];
+}
+
+}  // namespace
 
 // CHOLMOD state: K + Delta K's lower triangle (values refreshed in place), its factor and workspace.
 struct ContactFactor::Cholmod {
@@ -121,12 +158,16 @@ bool ContactFactor::solve(const ContactSet& contacts, Eigen::MatrixX3d& x) {
   rhs.noalias() = m_k * x;
   for (int k = 0; k < contacts.size(); ++k)
     rhs.row(contacts.dofs[k]) += contacts.weights[k] * contacts.targets.row(k);
-  cholmod_dense* sol = cholmod_solve(CHOLMOD_A, c.factor, c.rhs, &c.common);
-  if (!sol) return false;
-  const Eigen::Map<const Eigen::MatrixXd> out(static_cast<const double*>(sol->x), n, 3);
+  // The three coordinates' triangular solves on two threads (x and y on one, z on the other): the factor is only
+  // read, and this serial phase otherwise leaves the second core idle.
+  const cholmod_factor& f = *c.factor;
+  if (f.is_super || f.is_ll || f.xtype != CHOLMOD_REAL) return false;  // the simplicial LDL^T analyse/updown give
+  Eigen::MatrixXd out(n, 3);
+  const double* in = rhs.data();
+  tbb::parallel_invoke([&] { solveLdlColumns<2>(f, in, out.data(), 0); },
+                       [&] { solveLdlColumns<1>(f, in, out.data(), 2); });
   const bool finite = out.allFinite();
   if (finite) x = out;
-  cholmod_free_dense(&sol, &c.common);
   return finite;
 }
 
