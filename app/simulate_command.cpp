@@ -72,9 +72,14 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
     const Eigen::MatrixX3d positions = placedOrFrom(garment, options.from);
     exportGarment(garment, positions, options.output);
     if (!options.png.empty()) renderToPng(makeSnapshot(scene, garment, positions), options, camera, options.png, out);
-    stats = {{"status", options.from.empty() ? "Placed" : "FromState"}, {"steps", 0}, {"sim_time_s", 0.0}, {"terms", nlohmann::json::array()},
-             {"per_step", nlohmann::json::array()}, {"vertices", garment.vertexCount()},
-             {"triangles", garment.triangleCount()}, {"pinned_vertices", pinned.size()}};
+    stats = {{"status", options.from.empty() ? "Placed" : "FromState"},
+             {"steps", 0},
+             {"sim_time_s", 0.0},
+             {"terms", nlohmann::json::array()},
+             {"per_step", nlohmann::json::array()},
+             {"vertices", garment.vertexCount()},
+             {"triangles", garment.triangleCount()},
+             {"pinned_vertices", pinned.size()}};
     out << "wrote " << options.output << " (" << garment.vertexCount() << " vertices, " << garment.triangleCount()
         << " triangles, " << (options.from.empty() ? "placed garment" : "the state of " + options.from) << ")\n";
   } else {

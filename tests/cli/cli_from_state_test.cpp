@@ -18,8 +18,12 @@ ProcessResult drape(const std::string& args) {
   return runProcess(quote(DRAPE_EXECUTABLE) + " " + args + " </dev/null", kScratch);
 }
 
-std::string scene(const char* file) { return quote((assetsDir() / "scenes" / file).string()); }
-std::string path(const char* file) { return quote((kScratch / file).string()); }
+std::string scene(const char* file) {
+  return quote((assetsDir() / "scenes" / file).string());
+}
+std::string path(const char* file) {
+  return quote((kScratch / file).string());
+}
 
 // The "v" lines of an OBJ as rows of numbers.
 std::vector<std::array<double, 3>> vertices(const std::filesystem::path& obj) {
@@ -43,7 +47,8 @@ double largestDifference(const std::vector<std::array<double, 3>>& a, const std:
 
 TEST(CliFrom, StageNoneWritesTheGivenStateAndAPreviewStartsThere) {
   const std::string tablecloth = scene("tablecloth.json") + " --set mesh.target_edge_length=0.08";
-  ASSERT_EQ(drape("--simulate " + tablecloth + " --solver preview --max-sim-time 0.1 -o " + path("state.obj")).exitCode, 0);
+  ASSERT_EQ(drape("--simulate " + tablecloth + " --solver preview --max-sim-time 0.1 -o " + path("state.obj")).exitCode,
+            0);
   ASSERT_EQ(drape("--simulate " + tablecloth + " --solver none -o " + path("placed.obj")).exitCode, 0);
   const auto r = drape("--simulate " + tablecloth + " --solver none --from " + path("state.obj") + " -o " +
                        path("copy.obj") + " --stats " + path("copy.json"));
@@ -51,7 +56,7 @@ TEST(CliFrom, StageNoneWritesTheGivenStateAndAPreviewStartsThere) {
   const auto state = vertices(kScratch / "state.obj"), copy = vertices(kScratch / "copy.obj"),
              placed = vertices(kScratch / "placed.obj");
   ASSERT_EQ(copy.size(), state.size());
-  EXPECT_EQ(largestDifference(copy, state), 0.0);  // 9 significant digits read and written again
+  EXPECT_EQ(largestDifference(copy, state), 0.0);     // 9 significant digits read and written again
   EXPECT_GT(largestDifference(state, placed), 0.01);  // the preview moved it: the copy is not the placed garment
   const auto stats = nlohmann::json::parse(std::ifstream(kScratch / "copy.json"));
   EXPECT_EQ(stats.at("status"), "FromState");
@@ -75,8 +80,8 @@ TEST(CliFrom, AnotherGarmentsStateIsRefused) {
     EXPECT_NE(r.err.find("coarse.obj:"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("vertices, the scene's garment has"), std::string::npos) << r.err;
   }
-  const auto render = drape("--render " + scene("tablecloth.json") + " --simulate none --from " +
-                            path("missing.obj") + " -o " + path("x.png"));
+  const auto render = drape("--render " + scene("tablecloth.json") + " --simulate none --from " + path("missing.obj") +
+                            " -o " + path("x.png"));
   EXPECT_EQ(render.exitCode, 1);
   EXPECT_NE(render.err.find("missing.obj: cannot open"), std::string::npos) << render.err;
   const auto info = drape("--info " + scene("tablecloth.json") + " --from " + path("coarse.obj"));

@@ -40,9 +40,10 @@ TEST(StartState, NewtonsRestStateIsAFixedPointOfTheDrapeStartedAtIt) {
   int againSteps = 0;
   const Eigen::MatrixX3d x = runToEnd(again, &againSteps);
   const double mean = (x - rest).rowwise().norm().mean();
-  std::printf("[ StartState ] Newton alone at rest after %d steps (%.3f s); from that state at rest again after %d "
-              "steps (%.3f s), %.3f mm from it on average\n",
-              steps, alone.time(), againSteps, again.time(), 1e3 * mean);
+  std::printf(
+      "[ StartState ] Newton alone at rest after %d steps (%.3f s); from that state at rest again after %d "
+      "steps (%.3f s), %.3f mm from it on average\n",
+      steps, alone.time(), againSteps, again.time(), 1e3 * mean);
   EXPECT_EQ(again.endReason(), "AtRest");
   // Little more than the early-stop window: the drape from the placed garment took three times as long and more.
   EXPECT_LT(again.time(), alone.time() / 2.0);

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <string>
@@ -60,10 +60,12 @@ std::array<int, 3> canonical(int a, int b, int c) {
 
 GarmentState readGarmentState(const std::filesystem::path& file) {
   std::string extension = file.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   if (extension != ".obj")
-    fail(file, 0, "a garment state must be an OBJ written by drape (.glb, .gltf, .ply and .stl do not keep the "
-                  "garment's vertex order)");
+    fail(file, 0,
+         "a garment state must be an OBJ written by drape (.glb, .gltf, .ply and .stl do not keep the "
+         "garment's vertex order)");
   std::ifstream in(file);
   if (!in) fail(file, 0, "cannot open the garment state");
   std::vector<double> coordinates;
@@ -85,8 +87,9 @@ GarmentState readGarmentState(const std::filesystem::path& file) {
       for (std::string_view token = nextToken(rest); !token.empty(); token = nextToken(rest), ++corners) {
         if (corners == 3) fail(file, line, "face is not a triangle (drape writes triangles only): " + text);
         if (!parseCorner(token, vertexCount, face[corners]))
-          fail(file, line, "face corner '" + std::string(token) + "' names no vertex defined before it (" +
-                               std::to_string(vertexCount) + " so far)");
+          fail(file, line,
+               "face corner '" + std::string(token) + "' names no vertex defined before it (" +
+                   std::to_string(vertexCount) + " so far)");
       }
       if (corners != 3) fail(file, line, "face is not a triangle (drape writes triangles only): " + text);
       faces.push_back(face);
@@ -106,13 +109,14 @@ GarmentState readGarmentState(const std::filesystem::path& file) {
 void checkGarmentState(const GarmentState& state, const Garment& garment, const std::filesystem::path& file) {
   const Eigen::Index vertices = state.positions.rows();
   if (vertices != garment.positions.rows())
-    fail(file, 0, std::to_string(vertices) + " vertices, the scene's garment has " +
-                      std::to_string(garment.positions.rows()) +
-                      " (written from another scene or mesh setting?)");
+    fail(file, 0,
+         std::to_string(vertices) + " vertices, the scene's garment has " + std::to_string(garment.positions.rows()) +
+             " (written from another scene or mesh setting?)");
   if (state.faces.rows() == 0) return;  // positions only: the count is all there is to check
   if (state.faces.rows() != garment.triangles.rows())
-    fail(file, 0, std::to_string(state.faces.rows()) + " faces, the scene's garment has " +
-                      std::to_string(garment.triangles.rows()) + " triangles");
+    fail(file, 0,
+         std::to_string(state.faces.rows()) + " faces, the scene's garment has " +
+             std::to_string(garment.triangles.rows()) + " triangles");
   std::vector<std::array<int, 3>> expected(static_cast<std::size_t>(garment.triangles.rows()));
   for (Eigen::Index f = 0; f < garment.triangles.rows(); ++f)
     expected[static_cast<std::size_t>(f)] =
@@ -127,8 +131,7 @@ void checkGarmentState(const GarmentState& state, const Garment& garment, const 
       fail(file, state.faceLines[static_cast<std::size_t>(f)],
            "face " + std::to_string(state.faces(f, 0) + 1) + " " + std::to_string(state.faces(f, 1) + 1) + " " +
                std::to_string(state.faces(f, 2) + 1) +
-               (it != expected.end() && *it == face ? " appears twice"
-                                                    : " is not a triangle of the scene's garment") +
+               (it != expected.end() && *it == face ? " appears twice" : " is not a triangle of the scene's garment") +
                " (the file was written from another garment, or its vertices were reordered)");
     }
     used[k] = 1;

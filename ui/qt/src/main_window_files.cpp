@@ -130,8 +130,8 @@ void MainWindow::onExport() {
 }
 
 void MainWindow::onLoadState() {
-  const QString file =
-      QFileDialog::getOpenFileName(this, tr("Load garment state"), QString(), tr("Garment state, Wavefront OBJ (*.obj)"));
+  const QString file = QFileDialog::getOpenFileName(this, tr("Load garment state"), QString(),
+                                                    tr("Garment state, Wavefront OBJ (*.obj)"));
   if (!file.isEmpty()) loadGarmentState(toPath(file));
 }
 

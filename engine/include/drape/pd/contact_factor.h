@@ -5,9 +5,9 @@
 // computed once (Delta K only adds to K's diagonal, so the pattern never changes). When the contact DOFs or weights
 // change between calls by at most maxUpdates(n) DOFs, the factor is modified by CHOLMOD's rank-k update (DOFs that
 // joined, or whose weight grew) and downdate (left, or weight shrank), otherwise refactorised; every call is then a
-// pair of triangular solves for the three coordinates. Exact up to rounding, unlike the dual + PCG solves of contact_solve.h, and at a few
-// thousand DOFs far cheaper than their tens of collision-free solves per L-G iteration; the domain decomposition is
-// not used (one factor, CHOLMOD's own ordering).
+// pair of triangular solves for the three coordinates. Exact up to rounding, unlike the dual + PCG solves of
+// contact_solve.h, and at a few thousand DOFs far cheaper than their tens of collision-free solves per L-G iteration;
+// the domain decomposition is not used (one factor, CHOLMOD's own ordering).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
