@@ -159,13 +159,20 @@ bool ContactFactor::solve(const ContactSet& contacts, Eigen::MatrixX3d& x) {
   for (int k = 0; k < contacts.size(); ++k)
     rhs.row(contacts.dofs[k]) += contacts.weights[k] * contacts.targets.row(k);
   // The three coordinates' triangular solves on two threads (x and y on one, z on the other): the factor is only
-  // read, and this serial phase otherwise leaves the second core idle.
+  // read, and this serial phase otherwise leaves the second core idle. The simplicial analysis and the updates
+  // keep an LDL^T factor; any other kind goes through cholmod_solve.
   const cholmod_factor& f = *c.factor;
-  if (f.is_super || f.is_ll || f.xtype != CHOLMOD_REAL) return false;  // the simplicial LDL^T analyse/updown give
   Eigen::MatrixXd out(n, 3);
-  const double* in = rhs.data();
-  tbb::parallel_invoke([&] { solveLdlColumns<2>(f, in, out.data(), 0); },
-                       [&] { solveLdlColumns<1>(f, in, out.data(), 2); });
+  if (!f.is_super && !f.is_ll && f.xtype == CHOLMOD_REAL) {
+    const double* in = rhs.data();
+    tbb::parallel_invoke([&] { solveLdlColumns<2>(f, in, out.data(), 0); },
+                         [&] { solveLdlColumns<1>(f, in, out.data(), 2); });
+  } else {
+    cholmod_dense* sol = cholmod_solve(CHOLMOD_A, c.factor, c.rhs, &c.common);
+    if (!sol) return false;
+    out = Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(sol->x), n, 3);
+    cholmod_free_dense(&sol, &c.common);
+  }
   const bool finite = out.allFinite();
   if (finite) x = out;
   return finite;
