@@ -28,6 +28,12 @@ TEST(PdContactFactor, SolvesEquationFourteenLikeADirectSolve) {
   expectDirect(x);
   EXPECT_EQ(factor.factorisations(), 1);
 
+  // The right-hand side given (as the preview passes it) instead of formed again as K x: the same solution.
+  Eigen::MatrixX3d withB = freeSolve();
+  ASSERT_TRUE(factor.solve(p.contacts, withB, &p.b));
+  expectDirect(withB);
+  EXPECT_LT((withB - x).norm(), 1e-12 * x.norm());
+
   // New targets on the same DOFs and weights: the same factor.
   p.contacts.targets.col(1).array() += 0.01;
   x = freeSolve();

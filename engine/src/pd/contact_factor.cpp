@@ -128,7 +128,7 @@ bool ContactFactor::updateFactor(const std::vector<double>& weight) {
   return true;
 }
 
-bool ContactFactor::solve(const ContactSet& contacts, Eigen::MatrixX3d& x) {
+bool ContactFactor::solve(const ContactSet& contacts, Eigen::MatrixX3d& x, const Eigen::MatrixX3d* b) {
   Cholmod& c = *m_cholmod;
   const int n = static_cast<int>(m_k.rows());
   if (!c.factor || !c.rhs || x.rows() != n) return false;
@@ -153,9 +153,12 @@ bool ContactFactor::solve(const ContactSet& contacts, Eigen::MatrixX3d& x) {
     }
     m_weight.swap(m_next);
   }
-  // Right-hand side b + S^T W p with b = K x (x = K^-1 b on entry), column-major n x 3.
+  // Right-hand side b + S^T W p (b = K x when not given: x = K^-1 b on entry), column-major n x 3.
   Eigen::Map<Eigen::MatrixXd> rhs(static_cast<double*>(c.rhs->x), n, 3);
-  rhs.noalias() = m_k * x;
+  if (b && b->rows() == n)
+    rhs = *b;
+  else
+    rhs.noalias() = m_k * x;
   for (int k = 0; k < contacts.size(); ++k)
     rhs.row(contacts.dofs[k]) += contacts.weights[k] * contacts.targets.row(k);
   // The three coordinates' triangular solves on two threads (x and y on one, z on the other): the factor is only

@@ -93,7 +93,8 @@ struct PreviewSolver::Impl {
   GlobalSolver* global = nullptr;
   LocalStep* local = nullptr;
   // The collision-aware correction of xFree (the collision-free solve) for `contacts`, by settings.contactSolve.
-  ContactSolveStats solveContacts(const ContactSet& contacts, Eigen::MatrixX3d& xFree);
+  // xFree: on entry K^-1 b (the collision-free solve of right-hand side b), on exit the solution with contacts.
+  ContactSolveStats solveContacts(const ContactSet& contacts, const Eigen::MatrixX3d& b, Eigen::MatrixX3d& xFree);
   std::vector<int> triangleDomain;
   int domains = 1;
   Eigen::MatrixX3d x, v;  // |V| x 3
@@ -369,7 +370,7 @@ PreviewReport PreviewSolver::Impl::attempt() {
       lastContactDofs = contacts.dofs;
       addDrag(contacts);
       const auto t3 = Clock::now();
-      const ContactSolveStats cs = solveContacts(contacts, xFree);
+      const ContactSolveStats cs = solveContacts(contacts, b, xFree);
       rep.contactSolveTime += seconds(t3, Clock::now());
       rep.contactResidual = cs.relativeResidual;
       rep.sdIterations += cs.sdIterations;
@@ -411,12 +412,13 @@ PreviewReport PreviewSolver::Impl::attempt() {
   return rep;
 }
 
-ContactSolveStats PreviewSolver::Impl::solveContacts(const ContactSet& contacts, Eigen::MatrixX3d& xFree) {
+ContactSolveStats PreviewSolver::Impl::solveContacts(const ContactSet& contacts, const Eigen::MatrixX3d& b,
+                                                     Eigen::MatrixX3d& xFree) {
   if (settings.contactSolve == ContactSolveKind::Factor) {
     Level& lv = levels[level];
     if (!lv.contactFactor) lv.contactFactor = std::make_unique<ContactFactor>(system->matrix());
     const Eigen::MatrixX3d collisionFree = xFree;
-    if (lv.contactFactor->solve(contacts, xFree)) return {};
+    if (lv.contactFactor->solve(contacts, xFree, &b)) return {};
     xFree = collisionFree;  // not positive definite (cannot happen for K + diagonal): the iterative solve
   }
   const ContactSolveKind kind =

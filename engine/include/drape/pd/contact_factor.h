@@ -26,8 +26,9 @@ class ContactFactor {
   ContactFactor& operator=(const ContactFactor&) = delete;
 
   // x: on entry the collision-free solution K^-1 b (|free| x 3); on exit the solution of eq. 14 with `contacts`.
+  // b: that right-hand side when the caller has it (the product K x is then not formed again); nullptr: K x.
   // Returns false (x unchanged) if K + Delta K is not numerically positive definite.
-  bool solve(const ContactSet& contacts, Eigen::MatrixX3d& x);
+  bool solve(const ContactSet& contacts, Eigen::MatrixX3d& x, const Eigen::MatrixX3d* b = nullptr);
   int factorisations() const { return m_factorisations; }  // numeric factorisations so far
   int updates() const { return m_updates; }                // calls that modified the factor by update/downdate
   // Changed DOFs up to which the factor of an n x n K is updated rather than refactorised: 64, or n / 32 on larger
