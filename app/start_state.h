@@ -9,12 +9,11 @@
 
 namespace drape::app {
 
-// The simulation of scene, starting at the vertex positions of `from` when it is not empty (drape::startStateAt).
-// Throws InputError naming the file when it cannot be read, belongs to another garment (checkGarmentState), or
-// the stage cannot start from it (a drape from a state stretched past solver.preview.failure_strain).
+// The simulation of scene: from the placed garment when `from` is empty, else drape::simulationFromStateFile
+// (throws InputError naming the file).
 std::unique_ptr<Simulation> startSimulation(Scene scene, const std::string& from);
 
-// Stage none: the positions of `from` (checked against garment), or the placed garment's when it is empty.
+// Stage none: the placed garment's positions when `from` is empty, else drape::readGarmentPositions.
 Eigen::MatrixX3d placedOrFrom(const Garment& garment, const std::string& from);
 
 }  // namespace drape::app

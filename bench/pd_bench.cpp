@@ -28,6 +28,7 @@
 #include "drape/pd/grid_cloth.h"
 #include "drape/pd/pd_system.h"
 #include "drape/garment/garment_builder.h"
+#include "drape/io/garment_state.h"
 #include "drape/pd/preview_solver.h"
 #include "drape/scene/pins.h"
 #include "drape/scene/scene.h"
@@ -235,24 +236,6 @@ struct Variant {
   std::function<void(PreviewSettings&)> apply;
 };
 
-// Vertex positions (3|V|) of an OBJ written from the same garment (same vertex order).
-Eigen::VectorXd objPositions(const std::string& file, int vertexCount) {
-  FILE* f = std::fopen(file.c_str(), "r");
-  if (!f) throw std::runtime_error(file + ": cannot open");
-  std::vector<double> values;
-  char line[512];
-  while (std::fgets(line, sizeof line, f)) {
-    double a, b, c;
-    if (line[0] == 'v' && line[1] == ' ' && std::sscanf(line + 2, "%lf %lf %lf", &a, &b, &c) == 3)
-      values.insert(values.end(), {a, b, c});
-  }
-  std::fclose(f);
-  if (static_cast<int>(values.size()) != 3 * vertexCount)
-    throw std::runtime_error(file + ": " + std::to_string(values.size() / 3) + " vertices, the garment has " +
-                             std::to_string(vertexCount));
-  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
-}
-
 void interactiveTable(const std::string& sceneFile, const std::string& from, int steps, double cap,
                       const std::string& only, bool verbose) {
   SceneRequest request;
@@ -261,7 +244,10 @@ void interactiveTable(const std::string& sceneFile, const std::string& from, int
   const Garment garment = buildGarment(scene.pattern, meshingOptions(scene));
   const std::vector<int> pinned = resolvePins(scene, garment);
   newton::ClothModel model = buildClothModel(scene, garment, pinned);
-  if (!from.empty()) model.positions = objPositions(from, model.numVertices());
+  if (!from.empty()) {
+    const Eigen::MatrixX3d x = readGarmentPositions(from, garment);
+    for (int v = 0; v < model.numVertices(); ++v) model.positions.segment<3>(3 * v) = x.row(v).transpose();
+  }
   const TriangleMesh colliderMesh = mergedColliders(scene);
   std::shared_ptr<const collision::AvatarCollider> collider;
   if (colliderMesh.triangleCount() > 0) collider = std::make_shared<const collision::AvatarCollider>(colliderMesh);

@@ -138,4 +138,10 @@ void checkGarmentState(const GarmentState& state, const Garment& garment, const 
   }
 }
 
+Eigen::MatrixX3d readGarmentPositions(const std::filesystem::path& file, const Garment& garment) {
+  const GarmentState state = readGarmentState(file);
+  checkGarmentState(state, garment, file);
+  return state.positions;
+}
+
 }  // namespace drape

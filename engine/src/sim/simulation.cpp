@@ -11,6 +11,7 @@
 #include "drape/garment/garment_builder.h"
 #include "drape/garment/garment_transfer.h"
 #include "drape/geometry/strain.h"
+#include "drape/io/garment_state.h"
 #include "drape/newton/body_forces.h"
 #include "drape/pd/preview_fabric.h"
 #include "drape/pd/preview_solver.h"
@@ -98,6 +99,19 @@ ResumeState startStateAt(const std::string& stage, const Eigen::MatrixX3d& posit
   state.stage = stage == "drape" ? "drape" : "preview";
   if (state.stage == "drape") state.previewPositions = positions;
   return state;
+}
+
+std::unique_ptr<Simulation> simulationFromStateFile(Scene scene, const std::filesystem::path& file) {
+  const GarmentState state = readGarmentState(file);
+  const std::string stage = scene.settings.text("solver.stage");
+  auto simulation = std::make_unique<Simulation>(std::move(scene), startStateAt(stage, state.positions));
+  checkGarmentState(state, simulation->garment(), file);
+  if (!simulation->resumed()) {
+    const std::string why = simulation->previewFailure();
+    throw InputError(file.string() + ": " +
+                     (why.empty() ? "the " + stage + " stage cannot start from this state" : why));
+  }
+  return simulation;
 }
 
 Simulation::Simulation(Scene scene) : m_scene(std::move(scene)) { build(nullptr); }

@@ -7,7 +7,6 @@
 
 #include "drape/core/input_error.h"
 #include "drape/io/atomic_file.h"
-#include "drape/io/garment_state.h"
 #include "drape/scene/pins.h"
 
 namespace drape::qt {
@@ -224,17 +223,10 @@ bool SceneDocument::loadGarmentState(const std::filesystem::path& file) {
   }
   std::shared_ptr<Simulation> simulation;
   try {
-    const GarmentState state = readGarmentState(file);
-    checkGarmentState(state, *m_garment, file);
     Scene running = *m_scene;
     const std::string stage = running.settings.text("solver.stage");
-    const std::string startStage = stage == "drape" || stage == "preview" ? stage : "full";
-    running.settings.set("solver.stage", startStage, "simulation");
-    simulation = std::make_shared<Simulation>(std::move(running), startStateAt(startStage, state.positions));
-    if (!simulation->resumed())
-      throw InputError(file.string() + ": " +
-                       (simulation->previewFailure().empty() ? "the simulation cannot start from this state"
-                                                             : simulation->previewFailure()));
+    running.settings.set("solver.stage", stage == "drape" || stage == "preview" ? stage : "full", "simulation");
+    simulation = simulationFromStateFile(std::move(running), file);
   } catch (const InputError& e) {
     emit errorOccurred(QString::fromStdString(e.what()));
     return false;

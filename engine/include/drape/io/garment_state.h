@@ -28,4 +28,7 @@ GarmentState readGarmentState(const std::filesystem::path& file);
 // Throws InputError naming the file and the first difference.
 void checkGarmentState(const GarmentState& state, const Garment& garment, const std::filesystem::path& file);
 
+// readGarmentState then checkGarmentState: the positions (|V| x 3, metres) of garment stored in file.
+Eigen::MatrixX3d readGarmentPositions(const std::filesystem::path& file, const Garment& garment);
+
 }  // namespace drape

@@ -5,6 +5,7 @@
 // (the preview until it settles or solver.preview.max_time, then the Newton drape from the preview's
 // positions with velocities reset).
 #include <atomic>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -224,5 +225,11 @@ class Simulation {
   // Starts the Newton drape from positions (|V| x 3; no rows = the placed garment) at scene time `time`.
   void startDrape(const Eigen::MatrixX3d& positions, double time);
 };
+
+// The simulation of scene's stage started at the positions of a garment state file (drape --from, the GUI's Load
+// Garment State; io/garment_state.h): the file is read before the garment is meshed, then checked against it.
+// Throws InputError naming the file when it cannot be read, belongs to another garment, or the stage cannot start
+// from it (a drape from a state stretched past solver.preview.failure_strain).
+std::unique_ptr<Simulation> simulationFromStateFile(Scene scene, const std::filesystem::path& file);
 
 }  // namespace drape
