@@ -417,9 +417,8 @@ ContactSolveStats PreviewSolver::Impl::solveContacts(const ContactSet& contacts,
   if (settings.contactSolve == ContactSolveKind::Factor) {
     Level& lv = levels[level];
     if (!lv.contactFactor) lv.contactFactor = std::make_unique<ContactFactor>(system->matrix());
-    const Eigen::MatrixX3d collisionFree = xFree;
+    // On failure (not positive definite: cannot happen for K + diagonal) xFree is left as it was: the iterative solve.
     if (lv.contactFactor->solve(contacts, xFree, &b)) return {};
-    xFree = collisionFree;  // not positive definite (cannot happen for K + diagonal): the iterative solve
   }
   const ContactSolveKind kind =
       settings.contactSolve == ContactSolveKind::Factor ? ContactSolveKind::DualCgThenPcg : settings.contactSolve;
