@@ -41,7 +41,7 @@ double triangleAreaSum(const Garment& g) {
     const Eigen::Vector2d a = g.rest.row(g.triangles(t, 0)), b = g.rest.row(g.triangles(t, 1)),
                           c = g.rest.row(g.triangles(t, 2));
     const Eigen::Vector2d u = b - a, v = c - a;
-    area += 0.5 * (u.x() * v.y() - u.y() * v.x());
+    area += 0.5 * std::abs(u.x() * v.y() - u.y() * v.x());  // panels wound either way (garment.h)
   }
   return area;
 }

@@ -127,6 +127,17 @@ void sewToEdges(const std::vector<int>& fine, const std::vector<int>& coarse, bo
   }
 }
 
+// Twice the signed area of a closed polygon (positive when counter-clockwise).
+double signedArea(const std::vector<Eigen::Vector2d>& polygon) {
+  double sum = 0.0;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector2d& a = polygon[i];
+    const Eigen::Vector2d& b = polygon[(i + 1) % polygon.size()];
+    sum += a.x() * b.y() - b.x() * a.y();
+  }
+  return sum;
+}
+
 }  // namespace
 
 // GarmentCode (pygarment Panel.assembly) writes the rotation as scipy's
@@ -192,6 +203,9 @@ Garment buildGarment(const Pattern& pattern, const MeshingOptions& options, Diag
     std::vector<Eigen::Vector2d> outline = sampleOutline(pattern, p, counts, index, edgePoints[p]);
     for (Eigen::Vector2d& q : outline) q *= toMetres;
     meshes[p] = meshPanel(outline, panelTarget[p], panelContext(pattern, p));
+    // The mesher winds every triangle counter-clockwise in the plane; a clockwise outline marks the panel's
+    // other side as its outside, so its triangles turn over with it.
+    if (signedArea(outline) < 0.0) meshes[p].triangles.col(1).swap(meshes[p].triangles.col(2));
     vertexTotal += meshes[p].vertices.rows();
     triangleTotal += meshes[p].triangles.rows();
   }

@@ -29,7 +29,10 @@ struct Garment {
   Eigen::MatrixX2d rest;        // |V| x 2, metres: pattern coordinates (material frame: warp = x, weft = y)
   Eigen::MatrixX2d uvs;         // |V| x 2, texture coordinates: equal to rest (metres, each panel in its own frame)
   Eigen::MatrixX3d positions;   // |V| x 3, metres: placed 3D positions
-  Eigen::MatrixX3i triangles;   // |F| x 3, counter-clockwise in the pattern plane
+  // |F| x 3. A panel's outside (the side facing away from the body) is the side from which its outline runs
+  // counter-clockwise (GarmentCode's convention): its triangles are counter-clockwise in the pattern plane when
+  // the outline is, clockwise when the outline is clockwise, so that every face's normal points outward once placed.
+  Eigen::MatrixX3i triangles;
   Eigen::VectorXi trianglePanel;  // |F|, panel index of each triangle
   Eigen::VectorXi vertexPanel;    // |V|, panel index of each vertex
   std::vector<std::string> panelNames;
