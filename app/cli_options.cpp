@@ -52,7 +52,7 @@ std::string usageText() {
 Scene options (every headless mode):
   SCENE may be a scene file or a bare pattern file (GarmentCode JSON).
   --avatar FILE            avatar or collider mesh (obj, glb, gltf, fbx, ply, stl)
-  --avatar-units m|cm|mm   unit of the avatar file (default m)
+  --avatar-units U        unit of the avatar file: m, cm, mm or in (inches); default m
   --fabric PRESET          fabric of every panel (see --list-fabrics)
   --set KEY=VALUE          override any setting by its dotted name (repeatable; see --list-settings)
 
@@ -147,7 +147,7 @@ CliOptions parseCommandLine(int argc, char** argv) {
       o.scene.avatarFile = value(i, a);
     } else if (a == "--avatar-units") {
       o.scene.avatarUnits = value(i, a);
-      requireOneOf(a, o.scene.avatarUnits, {"m", "cm", "mm"});
+      requireOneOf(a, o.scene.avatarUnits, {"m", "cm", "mm", "in"});
     } else if (a == "--fabric") {
       o.scene.fabricPreset = value(i, a);
     } else if (a == "--set") {

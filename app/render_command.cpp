@@ -42,6 +42,8 @@ Snapshot stageSnapshot(Scene scene, const std::string& from, std::ostream& out) 
   }
   out << "render: simulated " << simulation.time() << " s in " << simulation.steps() << " steps ("
       << toString(last.status) << (last.atRest ? ", at rest" : "") << ")\n";
+  // What happened to the preview: each tear that started it over, then why it was given up (or is wrong).
+  for (const std::string& restart : simulation.previewRestartReasons()) out << "render: " << restart << "\n";
   if (!simulation.previewFailure().empty()) out << "render: " << simulation.previewFailure() << "\n";
   return simulation.snapshot();
 }

@@ -97,6 +97,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
     int domains = 0;
     std::string lastStage = simulation.stage();
     std::string lastFailure;  // simulation.previewFailure() as last printed
+    int restartsSaid = 0;     // simulation.previewRestartReasons() printed
     std::string status;  // Diverged or Cancelled from a step, else why the run finished
     double nextPrint = 0.0;
     StepReport last;
@@ -108,13 +109,17 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
         out << "  stage " << lastStage << " -> " << simulation.stage() << " at t=" << last.time << " s\n";
         lastStage = simulation.stage();
       }
-      // A torn preview: started over softer, given up, or (preview alone) going on.
-      const bool torn = simulation.previewFailure() != lastFailure;
-      if (torn) {
+      // A torn preview: started over (softer, or with its contact targets free), given up, or (preview alone) going on.
+      const bool restarted = simulation.previewRestarts() > restartsSaid;
+      for (; restartsSaid < simulation.previewRestarts(); ++restartsSaid)
+        out << "  " << simulation.previewRestartReasons()[restartsSaid] << "\n";
+      const bool failed = simulation.previewFailure() != lastFailure;
+      if (failed) {
         lastFailure = simulation.previewFailure();
         out << "  " << lastFailure << "\n";
-        if (simulation.time() < last.time) nextPrint = 0.0;  // started over, or the drape started, at time 0
       }
+      const bool torn = restarted || failed;
+      if (torn && simulation.time() < last.time) nextPrint = 0.0;  // started over, or the drape started, at time 0
       if (last.status == StepStatus::Diverged || last.status == StepStatus::Cancelled) {
         status = toString(last.status);
         break;
@@ -136,6 +141,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
              {"triangles", simulation.garment().triangleCount()}, {"pinned_vertices", simulation.pinned().size()},
              {"final", stepRecord(last)}, {"domains", domains}};
     if (!simulation.previewFailure().empty()) stats["preview_failure"] = simulation.previewFailure();
+    stats["preview_recovered"] = simulation.previewRecoveries();
     stats["preview_restarts"] = simulation.previewRestarts();
     stats["preview_courant_number"] = simulation.previewCourantNumber();
     stats["preview_courant_limit"] = simulation.previewCourantLimit();

@@ -173,6 +173,7 @@ TEST(CliSimulate, TornPreviewIsReportedAndTheDrapeStartsFromThePlacedGarment) {
   // Jersey is below the full pipeline's Courant limit (solver.preview.pipeline_courant_limit): not softened; the one
   // restart freed the contact targets.
   EXPECT_EQ(j.at("preview_restarts").get<int>(), 1);
+  EXPECT_TRUE(j.at("preview_recovered").empty()) << j.at("preview_recovered");  // given up after the restart
   EXPECT_TRUE(j.at("preview_targets_freed").get<bool>());
   EXPECT_EQ(j.at("preview_courant_limit").get<double>(), 5.0);
   EXPECT_LT(j.at("preview_courant_number").get<double>(), 5.0);
@@ -195,6 +196,9 @@ TEST(CliSimulate, TornStiffPreviewStartsOverSofterOnceBeforeTheDrape) {
   EXPECT_LT(over, given) << r.out;
   const auto j = nlohmann::json::parse(readWhole(stats));
   EXPECT_EQ(j.at("preview_restarts").get<int>(), 1);
+  EXPECT_NE(j.at("preview_failure").get<std::string>().find("the drape starts from the placed garment"),
+            std::string::npos);
+  EXPECT_TRUE(j.at("preview_recovered").empty()) << j.at("preview_recovered");
   EXPECT_GT(j.at("preview_courant_number").get<double>(), 5.0);
   EXPECT_EQ(j.at("preview_courant_limit").get<double>(), 5.0);
   const auto& steps = j.at("per_step");
@@ -207,6 +211,34 @@ TEST(CliSimulate, TornStiffPreviewStartsOverSofterOnceBeforeTheDrape) {
   EXPECT_DOUBLE_EQ(steps[1].at("time").get<double>(), steps[1].at("h").get<double>());
 }
 
+TEST(CliSimulate, PreviewThatRecoversAfterStartingOverIsNoFailure) {
+  // The first, unhalved preview step stretches a seam triangle about 300 %, past a hand-over strain of 50 %, as it
+  // hands over (max_time 1 ms): the preview starts over with its contact targets free, and the next hand-over goes
+  // ahead. The run says so as it happens, and the stats carry the restart under preview_recovered, not as a failure.
+  const auto stats = kScratch / "recovered.json";
+  auto r = drape("--simulate " + asset("scenes/default.json") + " --solver full" +
+                 " --set solver.preview.failure_strain=100 --set solver.preview.relaxation_time=0" +
+                 " --set solver.preview.max_halvings=0 --set solver.preview.max_time=0.001" +
+                 " --set solver.preview.handoff_strain=0.5 --max-sim-time 0.003 -o " +
+                 quote((kScratch / "recovered.obj").string()) + " --stats " + quote(stats.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  const std::string restart = "the preview starts over from the placed garment with its contact targets not held";
+  EXPECT_NE(r.out.find(restart), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(readWhole(stats));
+  EXPECT_FALSE(j.contains("preview_failure")) << j.at("preview_failure");
+  EXPECT_EQ(j.at("preview_restarts").get<int>(), 1);
+  ASSERT_EQ(j.at("preview_recovered").size(), 1u);
+  const std::string recovered = j.at("preview_recovered")[0].get<std::string>();
+  EXPECT_NE(recovered.find("was to hand over a triangle stretched to"), std::string::npos) << recovered;
+  EXPECT_NE(r.out.find(recovered), std::string::npos) << "the printed line is the recovered reason";
+  // Started over at time 0, then the drape from the preview's state.
+  const auto& steps = j.at("per_step");
+  ASSERT_GE(steps.size(), 3u);
+  EXPECT_EQ(steps[1].at("stage"), "preview");
+  EXPECT_DOUBLE_EQ(steps[1].at("time").get<double>(), steps[1].at("h").get<double>());
+  EXPECT_EQ(steps[2].at("stage"), "drape");
+}
+
 TEST(CliSimulate, TornPreviewAloneIsReportedAndGoesOn) {
   const auto stats = kScratch / "torn_alone.json";
   auto r = drape("--simulate " + asset("scenes/default.json") + " --solver preview --set solver.preview.failure_strain=2" +
@@ -217,6 +249,7 @@ TEST(CliSimulate, TornPreviewAloneIsReportedAndGoesOn) {
   EXPECT_NE(r.out.find("only the drape's can be trusted"), std::string::npos) << r.out;
   const auto j = nlohmann::json::parse(readWhole(stats));
   EXPECT_NE(j.at("preview_failure").get<std::string>().find(" of panel "), std::string::npos);
+  EXPECT_TRUE(j.at("preview_recovered").empty()) << j.at("preview_recovered");
   const auto& steps = j.at("per_step");
   ASSERT_GE(steps.size(), 2u);
   for (const auto& s : steps) EXPECT_EQ(s.at("stage"), "preview");

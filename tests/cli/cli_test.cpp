@@ -171,6 +171,35 @@ TEST(Cli, InfoOnAvatarFile) {
   EXPECT_NE(r.out.find("vertices: 23751"), std::string::npos) << r.out;
 }
 
+// A body in centimetres read as metres is 100 times too tall: --info, --render of the body alone and a scene with it
+// say which unit it looks like; --avatar-units cm silences it.
+TEST(Cli, AvatarInCentimetresIsWarnedAbout) {
+  const auto body = kScratch / "body_box_cm.obj";
+  std::ofstream out(body);
+  for (int i = 0; i < 8; ++i)  // 40 x 170 x 30 cm
+    out << "v " << (i & 1 ? 40 : 0) << " " << (i & 2 ? 170 : 0) << " " << (i & 4 ? 30 : 0) << "\n";
+  out << "f 1 3 2\nf 2 3 4\nf 5 6 7\nf 6 8 7\nf 1 2 5\nf 2 6 5\nf 3 7 4\nf 4 7 8\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n";
+  out.close();
+  const std::string expected = "warning: " + body.string() +
+                               ": the avatar is 170.00 m tall; it looks like centimetres: load it with --avatar-units "
+                               "cm (scene: \"avatar\": {\"units\": \"cm\"})";
+  auto info = drape("--info " + quote(body.string()));
+  ASSERT_EQ(info.exitCode, 0) << info.err;
+  EXPECT_NE(info.out.find(expected), std::string::npos) << info.out;
+  auto inCm = drape("--info " + quote(body.string()) + " --avatar-units cm");
+  ASSERT_EQ(inCm.exitCode, 0) << inCm.err;
+  EXPECT_EQ(inCm.out.find("warning"), std::string::npos) << inCm.out;
+
+  auto render =
+      drape("--render " + quote(body.string()) + " --size 32x32 -o " + quote((kScratch / "box.png").string()));
+  ASSERT_EQ(render.exitCode, 0) << render.err;
+  EXPECT_NE(render.out.find(expected), std::string::npos) << render.out;
+
+  auto scene = drape("--info " + asset("patterns/tshirt.json") + " --avatar " + quote(body.string()));
+  ASSERT_EQ(scene.exitCode, 0) << scene.err;
+  EXPECT_NE(scene.out.find(expected.substr(9)), std::string::npos) << scene.out;  // listed under "warnings:"
+}
+
 TEST(Cli, ListSettingsAndFabrics) {
   auto s = drape("--list-settings");
   EXPECT_EQ(s.exitCode, 0);

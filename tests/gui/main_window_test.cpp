@@ -267,6 +267,33 @@ TEST_F(MainWindowTest, ClosingDuringADrapeIsSafe) {
   SUCCEED();
 }
 
+// A scene whose avatar file is in centimetres but says no unit: the body comes out 100 times too tall, and the log
+// says which unit it looks like.
+TEST_F(MainWindowTest, AvatarInCentimetresIsWarnedAboutInTheLog) {
+  const std::filesystem::path dir = testOutputDir() / "gui_avatar_units";
+  std::filesystem::create_directories(dir);
+  std::ifstream in(assetsDir() / "avatars" / "female.obj");
+  std::ofstream body(dir / "female_cm.obj");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("v ", 0) == 0) {
+      std::istringstream coords(line.substr(2));
+      double x, y, z;
+      coords >> x >> y >> z;
+      body << "v " << 100 * x << " " << 100 * y << " " << 100 * z << "\n";
+    } else {
+      body << line << "\n";
+    }
+  }
+  body.close();
+  std::ofstream(dir / "scene.json") << R"({"pattern": ")" << (assetsDir() / "patterns" / "tshirt.json").generic_string()
+                                    << R"(", "avatar": {"file": "female_cm.obj"}})";
+  ASSERT_TRUE(window->openFile(dir / "scene.json"));
+  const QString log = window->logView()->toPlainText();
+  EXPECT_NE(log.indexOf("female_cm.obj: the avatar is "), -1) << log.toStdString();
+  EXPECT_NE(log.indexOf("it looks like centimetres: load it with --avatar-units cm"), -1) << log.toStdString();
+}
+
 TEST_F(MainWindowTest, RecentFilesRememberOpenedScenes) {
   const QStringList recent = qt::MainWindow::recentFiles();
   ASSERT_FALSE(recent.isEmpty());

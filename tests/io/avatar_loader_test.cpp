@@ -66,18 +66,6 @@ TEST(AvatarLoaderTest, ScalesByUnitsInMeter) {
   EXPECT_THROW(loadAvatar(avatarFile("cube.obj"), -1.0), InputError);
 }
 
-TEST(AvatarLoaderTest, UnitNames) {
-  EXPECT_EQ(unitsInMeterFromName("m"), 1.0);
-  EXPECT_EQ(unitsInMeterFromName("cm"), 100.0);
-  EXPECT_EQ(unitsInMeterFromName("mm"), 1000.0);
-  try {
-    unitsInMeterFromName("inch");
-    FAIL() << "expected InputError";
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "unknown length unit 'inch' (valid: m, cm, mm)");
-  }
-}
-
 TEST(AvatarLoaderTest, MissingFileIsNamed) {
   const auto file = avatarFile("nonexistent.obj");
   EXPECT_EQ(loadError(file), file.string() + ": file not found");

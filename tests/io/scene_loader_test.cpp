@@ -188,7 +188,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"scene_mesh_negative_edge.json", {"mesh.target_edge_length", "out of range"}},
         BadScene{"scene_mesh_edge_not_number.json", {"mesh.target_edge_length", "'fine' is not a number"}},
         BadScene{"scene_unknown_setting.json", {"unknown setting 'mesh.resolution'"}},
-        BadScene{"scene_bad_avatar_units.json", {"avatar.units", "'inch' is not one of m cm mm"}},
+        BadScene{"scene_bad_avatar_units.json", {"avatar.units", "'inch' is not one of m cm mm in"}},
         BadScene{"scene_avatar_not_found.json", {"no_such_body.obj"}},
         BadScene{"scene_unknown_fabric.json", {"unknown fabric preset 'velvet'"}},
         BadScene{"scene_invalid_json.json", {"invalid JSON: parse error at line 2"}}),

@@ -9,6 +9,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "drape/scene/scene.h"
 #include "drape/sim/simulation.h"
@@ -50,7 +51,9 @@ TEST(PreviewRetry, TornCottonPreviewStartsOverSofterFromThePlacedGarmentAndStays
   EXPECT_DOUBLE_EQ(sim.time(), 0.0);
   EXPECT_EQ((sim.positions() - placed).cwiseAbs().maxCoeff(), 0.0);
   EXPECT_EQ(sim.previewCourantLimit(), 5.0);
-  const std::string said = sim.previewFailure();
+  ASSERT_EQ(sim.previewRestartReasons().size(), 1u);
+  const std::string said = sim.previewRestartReasons()[0];
+  EXPECT_TRUE(sim.previewFailure().empty()) << sim.previewFailure();  // started over: not a failure
   EXPECT_TRUE(contains(said, "starts over from the placed garment")) << said;
   EXPECT_TRUE(contains(said, " to 5 (solver.preview.retry_courant_limit)")) << said;
   EXPECT_FALSE(contains(said, "the drape starts")) << said;
@@ -77,7 +80,8 @@ TEST(PreviewRetry, TornCottonPreviewStartsOverSofterFromThePlacedGarmentAndStays
   const double softenedMaxTime = sim.scene().settings.number("solver.preview.softened_max_time");
   ASSERT_GT(softenedMaxTime, tornAt);
   EXPECT_EQ(sim.previewRestarts(), 1);
-  EXPECT_EQ(sim.previewFailure(), said);
+  EXPECT_TRUE(sim.previewFailure().empty()) << sim.previewFailure();
+  EXPECT_EQ(sim.previewRecoveries(), std::vector<std::string>{said});  // recovered from the one tear
   EXPECT_GE(last.time, softenedMaxTime - 1e-12);
   EXPECT_LT(last.time, softenedMaxTime + last.h + 1e-12);
   EXPECT_LT(last.maxStrain, 1.0);  // the torn one: 580 %
@@ -97,10 +101,14 @@ TEST(PreviewRetry, ATearAfterTheRetryIsGivenUp) {
   sim.step();
   ASSERT_EQ(sim.previewRestarts(), 1);
   EXPECT_EQ(sim.stage(), "preview");
+  EXPECT_TRUE(sim.previewFailure().empty()) << sim.previewFailure();
   sim.step();
   EXPECT_EQ(sim.previewRestarts(), 1);
   EXPECT_EQ(sim.stage(), "drape");
   EXPECT_TRUE(contains(sim.previewFailure(), "the drape starts from the placed garment")) << sim.previewFailure();
+  // Given up after the restart: it recovered from nothing, and the restart's reason is still there.
+  EXPECT_TRUE(sim.previewRecoveries().empty());
+  EXPECT_TRUE(contains(sim.previewRestartReasons().at(0), "starts over")) << sim.previewRestartReasons().at(0);
   EXPECT_DOUBLE_EQ(sim.time(), 0.0);
   EXPECT_EQ((sim.positions() - placed).cwiseAbs().maxCoeff(), 0.0);
 
@@ -110,13 +118,15 @@ TEST(PreviewRetry, ATearAfterTheRetryIsGivenUp) {
   Simulation preview(defaultTshirt("cotton_shirting", alone));
   preview.step();
   ASSERT_EQ(preview.previewRestarts(), 1);
-  EXPECT_TRUE(contains(preview.previewFailure(), "starts over")) << preview.previewFailure();
+  EXPECT_TRUE(contains(preview.previewRestartReasons()[0], "starts over")) << preview.previewRestartReasons()[0];
+  EXPECT_TRUE(preview.previewFailure().empty()) << preview.previewFailure();
   preview.step();
   const std::string wrong = preview.previewFailure();
   EXPECT_TRUE(contains(wrong, "only the drape's can be trusted")) << wrong;
   preview.step();
   EXPECT_EQ(preview.previewFailure(), wrong);
   EXPECT_EQ(preview.previewRestarts(), 1);
+  EXPECT_TRUE(preview.previewRecoveries().empty());
   EXPECT_GT(preview.time(), 0.0);
 }
 
@@ -166,7 +176,9 @@ TEST(PreviewRetry, ATearAfterTheSofterRetryStartsOverWithTargetsFreeThenIsGivenU
   EXPECT_EQ(sim.stage(), "preview");
   EXPECT_DOUBLE_EQ(sim.time(), 0.0);
   EXPECT_EQ((sim.positions() - placed).cwiseAbs().maxCoeff(), 0.0);
-  EXPECT_TRUE(contains(sim.previewFailure(), "contact targets not held before it is sewn")) << sim.previewFailure();
+  EXPECT_TRUE(contains(sim.previewRestartReasons()[1], "contact targets not held before it is sewn"))
+      << sim.previewRestartReasons()[1];
+  EXPECT_TRUE(sim.previewFailure().empty()) << sim.previewFailure();
   // An edit that resumes the preview keeps its targets free.
   const ResumeState from = sim.resumeState();
   EXPECT_TRUE(from.previewTargetsFreed);
@@ -177,6 +189,7 @@ TEST(PreviewRetry, ATearAfterTheSofterRetryStartsOverWithTargetsFreeThenIsGivenU
   EXPECT_EQ(sim.previewRestarts(), 2);
   EXPECT_EQ(sim.stage(), "drape");
   EXPECT_TRUE(contains(sim.previewFailure(), "the drape starts from the placed garment")) << sim.previewFailure();
+  EXPECT_TRUE(sim.previewRecoveries().empty());
   EXPECT_DOUBLE_EQ(sim.time(), 0.0);
   EXPECT_EQ((sim.positions() - placed).cwiseAbs().maxCoeff(), 0.0);
 
@@ -234,7 +247,9 @@ TEST(PreviewRetry, OverstretchedHandOverStartsOverWithTargetsFreeOnce) {
   EXPECT_EQ(sim.stage(), "preview");
   EXPECT_DOUBLE_EQ(sim.time(), 0.0);
   EXPECT_EQ((sim.positions() - placed).cwiseAbs().maxCoeff(), 0.0);
-  const std::string said = sim.previewFailure();
+  ASSERT_EQ(sim.previewRestartReasons().size(), 1u);
+  const std::string said = sim.previewRestartReasons()[0];
+  EXPECT_TRUE(sim.previewFailure().empty()) << sim.previewFailure();
   EXPECT_TRUE(contains(said, "was to hand over a triangle stretched to")) << said;
   EXPECT_TRUE(contains(said, "solver.preview.handoff_strain (50 %)")) << said;
   const StepReport second = sim.step();
@@ -243,6 +258,8 @@ TEST(PreviewRetry, OverstretchedHandOverStartsOverWithTargetsFreeOnce) {
   EXPECT_EQ(sim.stage(), "drape");
   EXPECT_GT(sim.time(), 0.0);  // from the preview's state, not the placed garment
   EXPECT_EQ(sim.resumeState().previewPositions.rows(), sim.garment().vertexCount());
+  EXPECT_TRUE(sim.previewFailure().empty()) << sim.previewFailure();
+  EXPECT_EQ(sim.previewRecoveries(), std::vector<std::string>{said});
 
   // Off (0), or with the targets held in every step anyway: it hands over at once.
   for (const auto& setting : {std::pair<std::string, std::string>{"solver.preview.handoff_strain", "0"},

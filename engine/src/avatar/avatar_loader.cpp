@@ -97,14 +97,30 @@ bool isDegenerate(const std::vector<aiVector3D>& v, int a, int b, int c) {
   return ab.cross(ac).norm() <= 1e-12 * longest;
 }
 
-}  // namespace
-
-double unitsInMeterFromName(const std::string& name) {
-  if (name == "m") return 1.0;
-  if (name == "cm") return 100.0;
-  if (name == "mm") return 1000.0;
-  throw InputError("unknown length unit '" + name + "' (valid: m, cm, mm)");
+// The length unit the file declares: FBX's UnitScaleFactor (centimetres per file unit), which assimp passes on in
+// the scene's metadata without applying it (AI_CONFIG_FBX_CONVERT_TO_M is off).
+DeclaredUnit declaredUnit(const aiScene& scene) {
+  const aiMetadata* meta = scene.mMetaData;
+  if (!meta) return {};
+  for (unsigned i = 0; i < meta->mNumProperties; ++i) {
+    if (std::strcmp(meta->mKeys[i].C_Str(), "UnitScaleFactor") != 0) continue;
+    const aiMetadataEntry& entry = meta->mValues[i];
+    double cmPerUnit = 0.0;
+    if (entry.mType == AI_FLOAT)
+      cmPerUnit = *static_cast<const float*>(entry.mData);
+    else if (entry.mType == AI_DOUBLE)
+      cmPerUnit = *static_cast<const double*>(entry.mData);
+    else if (entry.mType == AI_INT32)
+      cmPerUnit = *static_cast<const std::int32_t*>(entry.mData);
+    if (!(cmPerUnit > 0.0) || !std::isfinite(cmPerUnit)) return {};
+    std::ostringstream source;
+    source << "FBX UnitScaleFactor " << cmPerUnit;
+    return {100.0 / cmPerUnit, source.str()};
+  }
+  return {};
 }
+
+}  // namespace
 
 TriangleMesh loadAvatar(const std::filesystem::path& file, double unitsInMeter, Diagnostics* diagnostics) {
   if (!(unitsInMeter > 0.0) || !std::isfinite(unitsInMeter)) {
@@ -116,6 +132,7 @@ TriangleMesh loadAvatar(const std::filesystem::path& file, double unitsInMeter, 
 
   Assimp::Importer importer;
   const aiScene* scene = readScene(importer, file);
+  const DeclaredUnit declared = declaredUnit(*scene);
 
   // Merge all triangle meshes, welding corners at equal positions (OBJ and STL readers give one vertex per
   // face corner; a body split by material into head and hands must stay one closed surface).
@@ -213,6 +230,9 @@ TriangleMesh loadAvatar(const std::filesystem::path& file, double unitsInMeter, 
     diagnostics->warn(file.string() + ": dropped " + std::to_string(degenerate) + " degenerate face" +
                       (degenerate == 1 ? "" : "s") + " (zero area or repeated vertex) of " + std::to_string(faceTotal));
   }
+  const double height = result.vertices.col(1).maxCoeff() - result.vertices.col(1).minCoeff();
+  const std::string unitWarning = avatarHeightWarning(file.string(), height, unitsInMeter, declared);
+  if (!unitWarning.empty() && diagnostics) diagnostics->warn(unitWarning);
   return result;
 }
 

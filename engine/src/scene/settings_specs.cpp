@@ -11,7 +11,7 @@ const std::vector<SettingSpec>& Settings::specs() {
   static const std::vector<SettingSpec> table = {
       {"pattern", T::Text, "", "", "sewing pattern file (GarmentCode JSON), relative to the scene file"},
       {"avatar.file", T::Text, "", "", "avatar or collider mesh (obj, glb, gltf, fbx, ply, stl); empty: none"},
-      {"avatar.units", T::Choice, "m", "", "length unit of the avatar file", -1e300, 1e300, {"m", "cm", "mm"}},
+      {"avatar.units", T::Choice, "m", "", "length unit of the avatar file", -1e300, 1e300, {"m", "cm", "mm", "in"}},
       {"fabric.preset", T::Text, "cotton_shirting", "", "default fabric of every panel (a file in assets/fabrics)"},
       {"fabric.stretch_warp", T::Number, "", "N/m", "override: stretch stiffness along the warp", 0, 1e7},
       {"fabric.stretch_weft", T::Number, "", "N/m", "override: stretch stiffness along the weft", 0, 1e7},

@@ -399,21 +399,24 @@ void Simulation::failPreviewIfTorn(const StepReport& report, const Eigen::Matrix
     if (reason.empty()) return;
     then = TearOutcome::PreviewStartsOverUnheld;
   }
-  m_previewFailure = std::move(reason);
   switch (then) {
-    case TearOutcome::PreviewGoesOn: m_previewWrong = true; break;
+    case TearOutcome::PreviewGoesOn:
+      m_previewFailure = std::move(reason);
+      m_previewWrong = true;
+      break;
     case TearOutcome::DrapeFromPlaced:
+      m_previewFailure = std::move(reason);
       m_solver->assembly.reset();
       startDrape(Eigen::MatrixX3d(), 0.0);
       break;
     case TearOutcome::PreviewStartsOver:
+      m_previewRestartReasons.push_back(std::move(reason));
       m_courantLimit = retry;
-      ++m_previewRestarts;
       startPreview();
       break;
     case TearOutcome::PreviewStartsOverUnheld:
+      m_previewRestartReasons.push_back(std::move(reason));
       m_targetsFreed = true;
-      ++m_previewRestarts;
       startPreview();
       break;
   }

@@ -305,6 +305,8 @@ void MainWindow::connectDocument() {
           [this](const QString& message) { showError(tr("Simulation"), message); });
   connect(m_controller, &SimulationController::noticeOccurred, this,
           [this](const QString& message) { log(tr("warning"), message); });
+  connect(m_controller, &SimulationController::infoOccurred, this,
+          [this](const QString& message) { log(tr("info"), message); });
 }
 
 void MainWindow::updateActions() {

@@ -59,7 +59,7 @@ ScenePanel::ScenePanel(QWidget* parent) : QWidget(parent) {
   m_avatar->setTextInteractionFlags(Qt::TextSelectableByMouse);
   avatarRow->addWidget(m_avatar, 1);
   m_avatarUnits = new QComboBox;
-  m_avatarUnits->addItems({"m", "cm", "mm"});
+  m_avatarUnits->addItems({"m", "cm", "mm", "in"});
   m_avatarUnits->setToolTip(tr("Length unit of the avatar file"));
   avatarRow->addWidget(m_avatarUnits);
   auto* openAvatar = new QPushButton(tr("Avatar..."));

@@ -37,6 +37,7 @@ SimulationController::SimulationController(QObject* parent) : QObject(parent) {
   connect(m_worker, &SimulationWorker::errorOccurred, this, &SimulationController::errorOccurred, Qt::QueuedConnection);
   connect(m_worker, &SimulationWorker::noticeOccurred, this, &SimulationController::noticeOccurred,
           Qt::QueuedConnection);
+  connect(m_worker, &SimulationWorker::infoOccurred, this, &SimulationController::infoOccurred, Qt::QueuedConnection);
   m_thread.start();
 }
 

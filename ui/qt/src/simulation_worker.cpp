@@ -243,9 +243,13 @@ void SimulationWorker::stepOnce() {
   auto simulation = current();
   if (!simulation) return;
   const std::string failure = simulation->previewFailure();
+  const int restarts = simulation->previewRestarts();
   const StepReport report = simulation->step();
   emit stepReported(report);
-  // A torn preview: started over softer, given up for the drape, or (preview alone) going on.
+  // A torn preview: started over (information: it may yet recover), given up for the drape, or (preview alone)
+  // going on with a wrong result.
+  for (int i = restarts; i < simulation->previewRestarts(); ++i)
+    emit infoOccurred(QString::fromStdString(simulation->previewRestartReasons()[i]));
   if (simulation->previewFailure() != failure)
     emit noticeOccurred(QString::fromStdString(simulation->previewFailure()));
   updateStage();

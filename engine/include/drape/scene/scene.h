@@ -78,7 +78,7 @@ struct Scene {
 struct SceneRequest {
   std::filesystem::path input;  // scene .json or pattern .json
   std::string avatarFile;       // --avatar (relative to the working directory)
-  std::string avatarUnits;      // --avatar-units m|cm|mm
+  std::string avatarUnits;      // --avatar-units m|cm|mm|in
   std::string fabricPreset;     // --fabric
   std::vector<std::pair<std::string, std::string>> overrides;  // --set key=value, applied last
 };

@@ -126,21 +126,28 @@ class Simulation {
   Eigen::MatrixX3d positions() const;  // |V| x 3, metres
   double time() const;
   int steps() const { return m_steps; }
-  // Why the preview was given up (solver.preview.failure_strain) and the drape started from the placed garment
-  // instead, at scene time 0: in the full pipeline, or when a drape was to start from a torn preview state
-  // (ResumeState::previewPositions). A preview run alone (solver.stage preview) is not given up: from its first
-  // torn step on, this says that its result is wrong and only the drape's can be trusted. Empty while none of this
-  // happened.
+  // A tear (solver.preview.failure_strain) with a fabric stiffer than solver.preview.retry_courant_limit first starts
+  // the preview over from the placed garment at scene time 0, its fabric softened to that Courant number
+  // (solver.preview.courant_limit). A tear with no such retry left starts the preview over in the same way once with
+  // its avatar contact targets never held before the garment is sewn (solver.preview.retry_without_held_targets;
+  // previewTargetsFreed()), and so does a full pipeline's preview about to hand over a triangle stretched past
+  // solver.preview.handoff_strain. Only a tear after that is given up (previewFailure()).
   //
-  // A tear with a fabric stiffer than solver.preview.retry_courant_limit first starts the preview over from the
-  // placed garment at scene time 0, its fabric softened to that Courant number (solver.preview.courant_limit); this
-  // then says so, and previewRestarts() counts it. A tear with no such retry left starts the preview over in the same
-  // way once with its avatar contact targets never held before the garment is sewn
-  // (solver.preview.retry_without_held_targets; previewTargetsFreed()), and so does a full pipeline's preview about
-  // to hand over a triangle stretched past solver.preview.handoff_strain. Only a tear after that is given up as
-  // above.
+  // The final verdict on the preview: why it was given up and the drape started from the placed garment instead, at
+  // scene time 0 (in the full pipeline, or when a drape was to start from a torn preview state,
+  // ResumeState::previewPositions); or, for a preview run alone (solver.stage preview), which is not given up, from
+  // its first torn step with no restart left on, that its result is wrong and only the drape's can be trusted. Empty
+  // while none of this happened: a tear that started the preview over is not a failure (previewRestartReasons()).
   const std::string& previewFailure() const { return m_previewFailure; }
-  int previewRestarts() const { return m_previewRestarts; }
+  // What each start-over said, in order: how far the tear stretched, when and where, and how the preview starts over
+  // ("...; the preview starts over from the placed garment with ..."). One entry per restart.
+  const std::vector<std::string>& previewRestartReasons() const { return m_previewRestartReasons; }
+  int previewRestarts() const { return static_cast<int>(m_previewRestartReasons.size()); }
+  // The start-overs the preview recovered from: previewRestartReasons() while the preview has not been given up
+  // after them (previewFailure() empty), else none.
+  std::vector<std::string> previewRecoveries() const {
+    return m_previewFailure.empty() ? m_previewRestartReasons : std::vector<std::string>();
+  }
   // The Courant number the preview's fabric is softened to: previewCourantLimitOf(scene()), or the retry's after a
   // restart; 0: the fabric's own stiffness.
   double previewCourantLimit() const { return m_courantLimit; }
@@ -164,7 +171,7 @@ class Simulation {
   double m_restSince = -1.0;  // preview: time the settle criterion started to hold
   std::string m_previewFailure;
   bool m_previewWrong = false;  // preview alone: a tear after which it went on has been said
-  int m_previewRestarts = 0;
+  std::vector<std::string> m_previewRestartReasons;
   double m_courantLimit = 0.0;     // previewCourantLimit()
   bool m_targetsFreed = false;     // previewTargetsFreed()
   double m_courantNumber = 0.0;    // previewCourantNumber()

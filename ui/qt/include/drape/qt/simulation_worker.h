@@ -89,6 +89,9 @@ class SimulationWorker : public QObject {
   // Something the user should know that needs no answer: a torn preview, given up for a drape from the placed
   // garment, or (a preview run alone) going on with a result that is wrong (Simulation::previewFailure()).
   void noticeOccurred(QString message);
+  // Something that happened and is no failure: a tear after which the preview started over
+  // (Simulation::previewRestartReasons()).
+  void infoOccurred(QString message);
 
  private slots:
   void stepOnce();
