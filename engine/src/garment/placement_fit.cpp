@@ -102,11 +102,14 @@ class Fitter {
       if (m_groups[g].region == Region::Arm) fitArm(static_cast<int>(g));
       if (m_groups[g].region == Region::Head) fitHead(static_cast<int>(g));
     }
-    for (const Group& group : m_groups)
+    for (const Group& group : m_groups) {
+      // A group left alone keeps its positions bit for bit.
+      if (group.translation.isZero(0.0) && group.rotation.isIdentity(0.0)) continue;
       for (int v : group.vertices) {
         const Eigen::Vector3d x = m_garment.positions.row(v).transpose();
         m_garment.positions.row(v) = (group.rotation * (x - group.pivot) + group.pivot + group.translation).transpose();
       }
+    }
   }
 
   // The arm group a panel belongs to, or -1.
