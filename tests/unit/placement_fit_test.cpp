@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "drape/avatar/body_landmarks.h"
@@ -61,6 +62,54 @@ TEST(PlacementFit, GarmentCodePatternsStayOnTheBodyTheyWereMadeFor) {
   DRAPE_SHARED_FILE(body, "garmentcode/mean_all.obj");
   for (const char* scene : {"shirt_mean_on_mean_all.json", "dress_pencil_on_mean_all.json"})
     expectStaysPut(test::testDataDir() / "scenes" / scene);
+}
+
+// The library t-shirt moved 10 cm forward by placement.translate: its back panel cuts into the mannequin's back. Front
+// to back the fit aligns nothing, so only the push out of the body moves it: the back panel, backwards, until no
+// vertex is inside.
+TEST(PlacementFit, PanelsInsideTheBodyArePushedOut) {
+  SceneRequest request;
+  request.input = test::assetsDir() / "scenes" / "tshirt.json";
+  request.overrides.push_back({"placement.translate", "0,0,0.1"});
+  const Scene on = sceneWithFit(request, true), off = sceneWithFit(request, false);
+  const collision::AvatarCollider body(on.avatar);
+  auto inside = [&](const Garment& g, const std::string& panel) {
+    int n = 0;
+    for (int v = 0; v < g.vertexCount(); ++v)
+      if (g.panelNames[g.vertexPanel(v)] == panel) n += body.signedDistance(g.positions.row(v).transpose()) < 0;
+    return n;
+  };
+  Diagnostics d;
+  const Garment asLaidOut = buildSceneGarment(off, nullptr), fitted = buildSceneGarment(on, &d);
+  ASSERT_GT(inside(asLaidOut, "back"), 0);
+  EXPECT_EQ(inside(fitted, "back"), 0);
+  // The back panel moved back; the front panel, clear of the body, stayed.
+  for (int v = 0; v < fitted.vertexCount(); ++v) {
+    const Eigen::Vector3d move = (fitted.positions.row(v) - asLaidOut.positions.row(v)).transpose();
+    const std::string& panel = fitted.panelNames[fitted.vertexPanel(v)];
+    if (panel == "back") {
+      EXPECT_LT(move.z(), 0.0);
+      EXPECT_LT(std::abs(move.x()), 0.1 * std::abs(move.z()));  // away from the body's axis: about straight back
+      EXPECT_NEAR(move.y(), 0.0, 1e-9);                         // horizontally
+    } else if (panel == "front") {
+      EXPECT_EQ(move.norm(), 0.0);
+    }
+  }
+}
+
+// An avatar that is no standing body (a cube) gets no fit, and one warning says so.
+TEST(PlacementFit, AvatarWithoutLandmarksLeavesThePatternAsLaidOut) {
+  SceneRequest request;
+  request.input = test::assetsDir() / "patterns" / "tshirt.json";
+  request.avatarFile = (test::testDataDir() / "avatars" / "cube.obj").string();
+  const Scene on = sceneWithFit(request, true), off = sceneWithFit(request, false);
+  Diagnostics d;
+  const Garment fitted = buildSceneGarment(on, &d), asLaidOut = buildSceneGarment(off, nullptr);
+  EXPECT_EQ(maxMove(fitted.positions, asLaidOut.positions), 0.0);
+  int warned = 0;
+  for (const std::string& w : d.warnings())
+    warned += w.find("placement: the pattern is placed as laid out") != std::string::npos;
+  EXPECT_EQ(warned, 1);
 }
 
 // GarmentCode's shirt on the broad, tall mannequin, placed with the fit on or off.
