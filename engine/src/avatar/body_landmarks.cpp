@@ -76,8 +76,9 @@ double lineSlope(const std::vector<Eigen::Vector2d>& s, size_t first, size_t las
   return vxx > 0 ? (sxy - sx * sy / n) / vxx : 0.0;
 }
 
-// The shoulder point on one side (sign +1: left, +x): the corner of the body's top outline seen from the front,
-// found as the break of the best two-line fit of the outline from the side of the neck outwards.
+// The shoulder point on one side (sign +1: left, +x): the corner of the body's top outline seen from the front (the
+// top of each vertical slice from the side of the neck outwards), where the shoulder's gentle slope turns into the
+// arm's: near the break of the best two-line fit of the outline, at the start of the arm's run.
 Eigen::Vector3d shoulderPoint(const TriangleMesh& mesh, double neckSide, double neckHeight, double sign,
                               double height) {
   std::vector<Eigen::Vector2d> outline;  // (distance from the neck side, top y)
