@@ -73,7 +73,9 @@ TEST(ScenePlacement, GarmentAwayFromTheAvatarIsWarnedAbout) {
   EXPECT_EQ(placementWarnings(none, onTheBody), 0);
 
   for (const char* offset : {"0,-1.5,0", "0,2,0", "1.5,0,0", "0,0,-1"}) {
-    const Scene away = load(scene, {{"mesh.target_edge_length", "0.05"}, {"placement.translate", offset}});
+    // With placement.fit off: the fit would move the garment back onto the body (placement_fit_test.cpp).
+    const Scene away =
+        load(scene, {{"mesh.target_edge_length", "0.05"}, {"placement.translate", offset}, {"placement.fit", "false"}});
     Diagnostics warned;
     buildSceneGarment(away, &warned);
     EXPECT_EQ(placementWarnings(warned, away), 1) << offset;

@@ -29,6 +29,9 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"sim.gravity", T::Number, "-9.81", "m/s^2", "gravity along y", -1000, 1000},
       {"placement.translate", T::Vector3, "0,0,0", "m", "moves the placed garment, every panel, by this vector: for "
        "a pattern laid out around another body's origin"},
+      {"placement.fit", T::Boolean, "true", "", "fits a pattern laid out around another body to the avatar: panel "
+       "groups (torso, sleeves, skirt) moved rigidly onto the avatar's landmarks, then panels inside the body moved out "
+       "(docs/FORMATS.md)"},
       // Simulation stages and limits
       {"solver.stage", T::Choice, "drape", "", "what --simulate runs: none (placed garment), preview (PD-DD), drape "
        "(Newton from the placed garment) or full (preview, then the drape from the preview state)", -1e300, 1e300,

@@ -2,6 +2,9 @@
 
 #include <sstream>
 
+#include "cloth_model_builder.h"
+#include "drape/garment/placement_fit.h"
+
 namespace drape {
 namespace {
 
@@ -24,6 +27,8 @@ MeshingOptions meshingOptions(const Scene& scene) {
 
 Garment buildSceneGarment(const Scene& scene, Diagnostics* diagnostics) {
   Garment garment = buildGarment(scene.pattern, meshingOptions(scene), diagnostics);
+  if (scene.hasAvatar() && scene.settings.flag("placement.fit"))
+    fitPlacementToAvatar(scene.pattern, garment, scene.avatar, {contactThickness(scene)}, diagnostics);
   if (!diagnostics || !scene.hasAvatar() || garment.vertexCount() == 0) return garment;
   const BoundingBox body = boundsOf(scene.avatar.vertices);
   const Eigen::Vector3d centre = boundsOf(garment.positions).center();
