@@ -9,6 +9,7 @@ SimulationController::SimulationController(QObject* parent) : QObject(parent) {
   qRegisterMetaType<std::shared_ptr<Simulation>>();
   qRegisterMetaType<StepReport>();
   qRegisterMetaType<RunState>();
+  qRegisterMetaType<QualityReport>();
   m_thread.setObjectName("drape-simulation");
   m_worker = new SimulationWorker;
   m_worker->moveToThread(&m_thread);
@@ -36,6 +37,8 @@ SimulationController::SimulationController(QObject* parent) : QObject(parent) {
       Qt::QueuedConnection);
   connect(m_worker, &SimulationWorker::errorOccurred, this, &SimulationController::errorOccurred, Qt::QueuedConnection);
   connect(m_worker, &SimulationWorker::noticeOccurred, this, &SimulationController::noticeOccurred,
+          Qt::QueuedConnection);
+  connect(m_worker, &SimulationWorker::qualityReported, this, &SimulationController::qualityReported,
           Qt::QueuedConnection);
   m_thread.start();
 }

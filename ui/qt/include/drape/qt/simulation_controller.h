@@ -48,6 +48,7 @@ class SimulationController : public QObject {
   void stageChanged(QString stage);
   void errorOccurred(QString message);
   void noticeOccurred(QString message);
+  void qualityReported(drape::QualityReport report);
 
  private:
   QThread m_thread;

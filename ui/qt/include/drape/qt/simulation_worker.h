@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "drape/sim/drape_quality.h"
 #include "drape/sim/simulation.h"
 #include "drape/sim/snapshot.h"
 
@@ -89,6 +90,9 @@ class SimulationWorker : public QObject {
   // Something the user should know that needs no answer: a torn preview, given up for a drape from the placed
   // garment, or (a preview run alone) going on with a result that is wrong (Simulation::previewFailure()).
   void noticeOccurred(QString message);
+  // The quality verdict (sim/drape_quality.h) of a stage that finished (at rest or at the scene's time or step
+  // limit), computed on the worker thread before the Finished state is announced.
+  void qualityReported(drape::QualityReport report);
 
  private slots:
   void stepOnce();
