@@ -63,7 +63,9 @@ Solvers (--solver for --simulate and --bench, --simulate for --render; default: 
   full     the preview, then the Newton drape from the preview state
   --from STATE.obj starts the stage at the vertex positions of an OBJ that drape wrote for the same scene (none: that
   state as it is; preview, full: the preview from it at rest; drape: the drape from it as from a preview's hand-over)
-Exit status: 0 on success, 1 on bad input or failure (one line on stderr names the file and the problem).
+Exit status: 0 on success, 1 on bad input or failure (one line on stderr names the file and the problem), 3 when the
+  solver diverged (the last good state is written), 4 when a simulated result fails its quality verdict (settings
+  quality.*: stretch, body penetration, self-intersections, at rest; one "warning: quality:" line per failed check).
 )";
 }
 

@@ -11,6 +11,8 @@ int runListSettings(std::ostream& out) {
   for (const auto& spec : Settings::specs()) {
     out << spec.key << " = " << (spec.defaultValue.empty() ? "(unset)" : spec.defaultValue);
     if (!spec.unit.empty()) out << " [" << spec.unit << "]";
+    const bool numeric = spec.type == SettingType::Number || spec.type == SettingType::Integer;
+    if (numeric && spec.min > -1e299 && spec.max < 1e299) out << " (" << spec.min << " .. " << spec.max << ")";
     if (!spec.choices.empty()) {
       out << " {";
       for (size_t i = 0; i < spec.choices.size(); ++i) out << (i ? "|" : "") << spec.choices[i];

@@ -16,14 +16,17 @@
 #include "drape/sim/scene_garment.h"
 #include "drape/sim/simulation.h"
 #include "drape/sim/snapshot_builder.h"
+#include "quality_output.h"
 #include "scene_request.h"
 #include "start_state.h"
 
 namespace drape::app {
 namespace {
 
-// Runs the scene's stage (none: the placed garment) and returns what to draw.
-Snapshot stageSnapshot(Scene scene, const std::string& from, std::ostream& out) {
+// Runs the scene's stage (none: the placed garment) and returns what to draw; exitStatus: the run's
+// (simulatedExitStatus: its quality verdict, or diverged), 0 for the placed garment.
+Snapshot stageSnapshot(Scene scene, const std::string& from, std::ostream& out, int& exitStatus) {
+  exitStatus = 0;
   if (scene.settings.text("solver.stage") == "none") {
     Diagnostics diagnostics;
     const Garment garment = buildSceneGarment(scene, &diagnostics);
@@ -45,6 +48,11 @@ Snapshot stageSnapshot(Scene scene, const std::string& from, std::ostream& out) 
   // What happened to the preview: each tear that started it over, then why it was given up (or is wrong).
   for (const std::string& restart : simulation.previewRestartReasons()) out << "render: " << restart << "\n";
   if (!simulation.previewFailure().empty()) out << "render: " << simulation.previewFailure() << "\n";
+  const bool stopped = last.status == StepStatus::Diverged || last.status == StepStatus::Cancelled;
+  const std::string status = stopped ? std::string(toString(last.status)) : simulation.endReason();
+  const QualityReport quality = checkDrapeQuality(simulation, status);
+  printQualityWarnings(quality, out);
+  exitStatus = simulatedExitStatus(status, quality);
   return simulation.snapshot();
 }
 
@@ -91,9 +99,10 @@ int runRender(const CliOptions& options, std::ostream& out) {
   }
   Scene scene = loadScene(requestWithStage(options));
   const SceneCamera camera = sceneCamera(scene.settings);
-  const Snapshot snapshot = stageSnapshot(std::move(scene), options.from, out);
+  int exitStatus = 0;
+  const Snapshot snapshot = stageSnapshot(std::move(scene), options.from, out, exitStatus);
   renderToPng(snapshot, options, camera, options.output, out);
-  return 0;
+  return exitStatus;
 }
 
 SceneCamera sceneCamera(const Settings& settings) {

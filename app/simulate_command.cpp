@@ -12,6 +12,7 @@
 #include "drape/sim/scene_garment.h"
 #include "drape/sim/simulation.h"
 #include "drape/sim/snapshot_builder.h"
+#include "quality_output.h"
 #include "scene_request.h"
 #include "start_state.h"
 
@@ -61,6 +62,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
   const std::string stage = scene.settings.text("solver.stage");
   nlohmann::json stats;
   std::vector<std::string> warnings;
+  int exitStatus = 0;
 
   if (stage == "none") {
     Diagnostics diagnostics;
@@ -150,6 +152,10 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
         << " s simulated; wrote " << options.output << "\n";
     if (status == "Diverged")
       out << "drape: the solver diverged at t=" << last.time << " s; the last good state was written\n";
+    const QualityReport quality = checkDrapeQuality(simulation, status);
+    printQualityWarnings(quality, out);
+    stats["quality"] = qualityJson(quality);
+    exitStatus = simulatedExitStatus(status, quality);
   }
   const double wall = secondsSince(start);
   stats["wall_time_s"] = wall;
@@ -157,7 +163,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
   if (!options.from.empty()) stats["from"] = options.from;
   stats["warnings"] = warnings;
   if (!options.stats.empty()) writeFileAtomically(options.stats, stats.dump(2) + "\n");
-  return stats["status"] == "Diverged" ? 3 : 0;
+  return exitStatus;
 }
 
 }  // namespace drape::app

@@ -249,3 +249,23 @@ TEST(SceneLoader, DefaultSceneIsTheTshirtOnTheDefaultMannequin) {
 
 }  // namespace
 }  // namespace drape::test
+
+namespace drape::test {
+namespace {
+
+TEST(SceneLoader, QualityThresholdsFromTheSceneFile) {
+  SceneRequest request;
+  request.input = testOutputDir() / "quality_scene.json";
+  {
+    std::ofstream out(request.input);
+    out << R"({"pattern": ")" << (assetsDir() / "patterns" / "tablecloth.json").string()
+        << R"(", "quality": {"require_rest": false, "max_strain": 0.3, "max_self_intersections": 7}})";
+  }
+  const Scene scene = loadScene(request);
+  EXPECT_FALSE(scene.settings.flag("quality.require_rest"));
+  EXPECT_DOUBLE_EQ(scene.settings.number("quality.max_strain"), 0.3);
+  EXPECT_EQ(scene.settings.integer("quality.max_self_intersections"), 7);
+}
+
+}  // namespace
+}  // namespace drape::test

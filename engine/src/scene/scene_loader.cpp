@@ -60,8 +60,8 @@ std::filesystem::path resolveRelative(const std::filesystem::path& base, const s
 
 const std::vector<std::string>& sceneSettingSections() {
   // Sections whose leaves are settings ("mesh": {"target_edge_length": 0.02} -> mesh.target_edge_length).
-  static const std::vector<std::string> sections = {"avatar", "fabric",  "mesh",   "placement", "sim",
-                                                    "solver", "contact", "camera", "render"};
+  static const std::vector<std::string> sections = {"avatar", "fabric",  "mesh",    "placement", "sim",
+                                                    "solver", "contact", "quality", "camera",    "render"};
   return sections;
 }
 

@@ -484,6 +484,8 @@ std::vector<std::string> Simulation::terms() const {
 
 double Simulation::contactThickness() const { return drape::contactThickness(m_scene); }
 
+const collision::AvatarCollider* Simulation::collider() const { return m_solver->collider.get(); }
+
 double Simulation::time() const {
   if (m_solver->assembly) return m_solver->assembly->preview->time();
   return m_solver->preview ? m_solver->previewOffset + m_solver->preview->time()

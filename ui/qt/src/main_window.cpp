@@ -296,6 +296,7 @@ void MainWindow::connectDocument() {
   connect(m_controller, &SimulationController::runStateChanged, this, [this](RunState state) {
     m_runState = state;
     if (state == RunState::Ready) m_statisticsPanel->clear();
+    if (state == RunState::Running) m_statisticsPanel->clearQuality();  // a verdict belongs to a finished stage
     const QString what = m_controller->stage() == "preview" ? tr("Preview") : tr("Drape");
     if (state == RunState::Finished) log(tr("info"), tr("%1 finished").arg(what));
     if (state == RunState::Cancelled) log(tr("info"), tr("%1 cancelled; Resume continues, Reset starts again").arg(what));
@@ -307,6 +308,12 @@ void MainWindow::connectDocument() {
           [this](const QString& message) { log(tr("warning"), message); });
   connect(m_controller, &SimulationController::infoOccurred, this,
           [this](const QString& message) { log(tr("info"), message); });
+  connect(m_controller, &SimulationController::qualityReported, this, [this](const QualityReport& report) {
+    m_statisticsPanel->setQuality(report);
+    for (const QualityCheck& c : report.checks)
+      if (!c.passed) log(tr("warning"), tr("quality: %1").arg(QString::fromStdString(c.message)));
+    if (report.passed) log(tr("info"), tr("Quality: every check passed"));
+  });
 }
 
 void MainWindow::updateActions() {

@@ -9,6 +9,7 @@ SimulationController::SimulationController(QObject* parent) : QObject(parent) {
   qRegisterMetaType<std::shared_ptr<Simulation>>();
   qRegisterMetaType<StepReport>();
   qRegisterMetaType<RunState>();
+  qRegisterMetaType<QualityReport>();
   m_thread.setObjectName("drape-simulation");
   m_worker = new SimulationWorker;
   m_worker->moveToThread(&m_thread);
@@ -38,6 +39,8 @@ SimulationController::SimulationController(QObject* parent) : QObject(parent) {
   connect(m_worker, &SimulationWorker::noticeOccurred, this, &SimulationController::noticeOccurred,
           Qt::QueuedConnection);
   connect(m_worker, &SimulationWorker::infoOccurred, this, &SimulationController::infoOccurred, Qt::QueuedConnection);
+  connect(m_worker, &SimulationWorker::qualityReported, this, &SimulationController::qualityReported,
+          Qt::QueuedConnection);
   m_thread.start();
 }
 

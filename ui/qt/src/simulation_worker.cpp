@@ -272,6 +272,7 @@ void SimulationWorker::stepOnce() {
   }
   if (simulation->finished()) {
     m_running.store(false);
+    emit qualityReported(checkDrapeQuality(*simulation, simulation->endReason()));
     setState(RunState::Finished);
     sendSnapshot();
     return;

@@ -4,9 +4,12 @@
 #include <QChartView>
 #include <QFormLayout>
 #include <QGridLayout>
+#include <QHBoxLayout>
+#include <QHeaderView>
 #include <QLabel>
 #include <QLineSeries>
 #include <QLogValueAxis>
+#include <QTableWidget>
 #include <QVBoxLayout>
 #include <QValueAxis>
 #include <algorithm>
@@ -28,6 +31,15 @@ void thin(QLineSeries* series) {
   for (qsizetype i = 0; i < points.size(); i += 2) kept.push_back(points[i]);
   if (kept.back() != points.back()) kept.push_back(points.back());
   series->replace(kept);
+}
+
+// A check's value or threshold in the unit that reads best: percent for stretch and fractions, mm for depths.
+QString qualityFigure(const std::string& name, double v) {
+  if (name == "max_strain" || name.find("fraction") != std::string::npos)
+    return QStringLiteral("%1 %").arg(v * 100.0, 0, 'f', 2);
+  if (name == "penetration_depth") return QStringLiteral("%1 mm").arg(v * 1e3, 0, 'f', 2);
+  if (name == "at_rest") return v > 0.0 ? QObject::tr("yes") : QObject::tr("no");
+  return QString::number(v, 'g', 6);
 }
 
 double niceLower(double v) {
@@ -59,6 +71,23 @@ StatisticsPanel::StatisticsPanel(QWidget* parent) : QWidget(parent) {
   grid->setColumnStretch(1, 1);
   grid->setColumnStretch(3, 1);
   layout->addLayout(grid);
+
+  auto* quality = new QHBoxLayout;
+  auto* qualityCaption = new QLabel(tr("quality:"));
+  qualityCaption->setStyleSheet("color: palette(mid);");
+  m_verdict = new QLabel(QStringLiteral("-"));
+  m_verdict->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  quality->addWidget(qualityCaption);
+  quality->addWidget(m_verdict, 1);
+  layout->addLayout(quality);
+  m_quality = new QTableWidget(0, 3);
+  m_quality->setHorizontalHeaderLabels({tr("check"), tr("value"), tr("threshold")});
+  m_quality->verticalHeader()->hide();
+  m_quality->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  m_quality->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  m_quality->setSelectionMode(QAbstractItemView::NoSelection);
+  m_quality->setMaximumHeight(170);
+  layout->addWidget(m_quality);
 
   auto* chart = new QChart;
   chart->setTitle(tr("Convergence"));
@@ -125,6 +154,46 @@ void StatisticsPanel::clear() {
   m_timeAxis->setRange(0, 0.1);
   for (auto& [name, label] : m_figures)
     if (name != tr("stage")) label->setText(QStringLiteral("-"));
+  clearQuality();
+}
+
+void StatisticsPanel::clearQuality() {
+  m_verdict->setText(QStringLiteral("-"));
+  m_verdict->setStyleSheet(QString());
+  m_quality->setRowCount(0);
+}
+
+void StatisticsPanel::setQuality(const QualityReport& report) {
+  int failed = 0;
+  m_quality->setRowCount(static_cast<int>(report.checks.size()));
+  for (int row = 0; row < static_cast<int>(report.checks.size()); ++row) {
+    const QualityCheck& c = report.checks[row];
+    failed += !c.passed;
+    const QStringList cells = {QString::fromStdString(c.name), qualityFigure(c.name, c.value),
+                               qualityFigure(c.name, c.threshold)};
+    for (int column = 0; column < cells.size(); ++column) {
+      auto* item = new QTableWidgetItem(cells[column]);
+      item->setToolTip(QString::fromStdString(c.message));
+      if (!c.passed) item->setForeground(QColor("#c0392b"));
+      m_quality->setItem(row, column, item);
+    }
+  }
+  m_verdict->setText(report.passed ? tr("passed")
+                                   : tr("failed (%1 of %2 checks)").arg(failed).arg(report.checks.size()));
+  m_verdict->setStyleSheet(report.passed ? "color: #1e8449; font-weight: bold;" : "color: #c0392b; font-weight: bold;");
+}
+
+QString StatisticsPanel::qualityVerdict() const {
+  return m_verdict->text();
+}
+
+int StatisticsPanel::qualityRows() const {
+  return m_quality->rowCount();
+}
+
+QString StatisticsPanel::qualityCell(int row, int column) const {
+  const QTableWidgetItem* item = m_quality->item(row, column);
+  return item ? item->text() : QString();
 }
 
 void StatisticsPanel::addReport(const StepReport& report) {

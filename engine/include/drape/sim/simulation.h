@@ -19,6 +19,10 @@
 
 namespace drape {
 
+namespace collision {
+class AvatarCollider;
+}
+
 enum class StepStatus { Converged, MaxIterations, Diverged, Cancelled };
 const char* toString(StepStatus status);
 
@@ -157,6 +161,8 @@ class Simulation {
   double previewCourantNumber() const { return m_courantNumber; }
   // Contact thickness the solvers use, metres (contact.thickness, else the thickest fabric, at least 2 mm).
   double contactThickness() const;
+  // The avatar and generated colliders, merged, as both solvers' contact sees them; nullptr when the scene has none.
+  const collision::AvatarCollider* collider() const;
 
  private:
   struct Solver;

@@ -49,6 +49,7 @@ class SimulationController : public QObject {
   void errorOccurred(QString message);
   void noticeOccurred(QString message);
   void infoOccurred(QString message);
+  void qualityReported(drape::QualityReport report);
 
  private:
   QThread m_thread;

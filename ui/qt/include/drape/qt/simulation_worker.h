@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "drape/sim/drape_quality.h"
 #include "drape/sim/simulation.h"
 #include "drape/sim/snapshot.h"
 
@@ -92,6 +93,9 @@ class SimulationWorker : public QObject {
   // Something that happened and is no failure: a tear after which the preview started over
   // (Simulation::previewRestartReasons()).
   void infoOccurred(QString message);
+  // The quality verdict (sim/drape_quality.h) of a stage that finished (at rest or at the scene's time or step
+  // limit), computed on the worker thread before the Finished state is announced.
+  void qualityReported(drape::QualityReport report);
 
  private slots:
   void stepOnce();

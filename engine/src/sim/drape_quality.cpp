@@ -1,0 +1,197 @@
+#include "drape/sim/drape_quality.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "drape/collision/avatar_collider.h"
+#include "drape/collision/self_intersection.h"
+#include "drape/geometry/strain.h"
+#include "drape/scene/settings.h"
+#include "drape/sim/simulation.h"
+
+namespace drape {
+namespace {
+
+template <class... Args>
+std::string format(const char* pattern, Args... args) {
+  char buffer[512];
+  std::snprintf(buffer, sizeof buffer, pattern, args...);
+  return buffer;
+}
+
+std::string panelOf(const Garment& garment, int panel) {
+  if (panel < 0 || panel >= static_cast<int>(garment.panelNames.size())) return "";
+  return " of panel '" + garment.panelNames[panel] + "'";
+}
+
+std::string at(const Eigen::Vector3d& p) {
+  return format(" at (%.3f, %.3f, %.3f) m", p.x(), p.y(), p.z());
+}
+
+std::string vertexPlace(const Garment& garment, const Eigen::MatrixX3d& x, int v) {
+  const int panel = v < garment.vertexPanel.size() ? garment.vertexPanel[v] : -1;
+  return "vertex " + std::to_string(v) + panelOf(garment, panel) + at(x.row(v).transpose());
+}
+
+std::string triangleName(const Garment& garment, int t) {
+  const int panel = t < garment.trianglePanel.size() ? garment.trianglePanel[t] : -1;
+  return "triangle " + std::to_string(t) + panelOf(garment, panel);
+}
+
+Eigen::Vector3d centreOf(const Garment& garment, const Eigen::MatrixX3d& x, int t) {
+  return (x.row(garment.triangles(t, 0)) + x.row(garment.triangles(t, 1)) + x.row(garment.triangles(t, 2)))
+             .transpose() /
+         3.0;
+}
+
+QualityCheck strainCheck(const Garment& garment, const Eigen::MatrixX3d& x, const QualitySettings& s) {
+  QualityCheck c;
+  c.name = "max_strain";
+  c.threshold = s.maxStrain;
+  const Eigen::VectorXd stretch = triangleStretch(garment.rest, x, garment.triangles);
+  if (stretch.size() > 0) {
+    c.value = stretch.maxCoeff(&c.triangle);
+    c.where = triangleName(garment, c.triangle) + at(centreOf(garment, x, c.triangle));
+  }
+  c.passed = !(c.value > c.threshold);  // a NaN stretch fails
+  c.message =
+      format("max_strain: a triangle stretched %.1f %% (threshold %.1f %%), ", 100.0 * c.value, 100.0 * c.threshold) +
+      (c.where.empty() ? "no triangles" : c.where);
+  return c;
+}
+
+// inside_fraction, penetration_depth and near_skin_fraction from every vertex's signed distance to the collider.
+void colliderChecks(const Garment& garment, const Eigen::MatrixX3d& x, const collision::AvatarCollider& collider,
+                    double thickness, const QualitySettings& s, std::vector<QualityCheck>& checks) {
+  const int n = static_cast<int>(x.rows());
+  std::vector<double> distance(n);
+  tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& range) {
+    for (int v = range.begin(); v != range.end(); ++v) distance[v] = collider.signedDistance(x.row(v).transpose());
+  });
+  int inside = 0, near = 0, deepest = -1;
+  for (int v = 0; v < n; ++v) {
+    if (distance[v] < 0.0) ++inside;
+    if (distance[v] < s.nearSkinDistance) ++near;
+    if (deepest < 0 || distance[v] < distance[deepest]) deepest = v;
+  }
+  const double count = std::max(1, n);
+  const std::string place = deepest < 0 ? std::string("no vertices") : vertexPlace(garment, x, deepest);
+
+  QualityCheck in;
+  in.name = "inside_fraction";
+  in.value = inside / count;
+  in.threshold = s.maxInsideFraction;
+  in.passed = in.value <= in.threshold;
+  in.vertex = deepest;
+  in.where = place;
+  in.message = format(
+                   "inside_fraction: %.2f %% of the garment vertices inside a collider (threshold %.2f %%); "
+                   "deepest: ",
+                   100.0 * in.value, 100.0 * in.threshold) +
+               place;
+  checks.push_back(in);
+
+  QualityCheck depth;
+  depth.name = "penetration_depth";
+  depth.value = deepest < 0 ? 0.0 : std::max(0.0, -distance[deepest]);
+  depth.threshold = s.maxPenetrationDepth > 0.0 ? s.maxPenetrationDepth : thickness;
+  depth.passed = !(depth.value > depth.threshold);
+  depth.vertex = deepest;
+  depth.where = place;
+  depth.message = format("penetration_depth: a vertex %.1f mm inside a collider (threshold %.1f mm), ",
+                         1e3 * depth.value, 1e3 * depth.threshold) +
+                  place;
+  checks.push_back(depth);
+
+  QualityCheck skin;
+  skin.name = "near_skin_fraction";
+  skin.value = near / count;
+  skin.threshold = s.maxNearSkinFraction;
+  skin.passed = skin.value <= skin.threshold;
+  skin.vertex = deepest;
+  skin.where = place;
+  skin.message = format(
+                     "near_skin_fraction: %.2f %% of the garment vertices within %.1f mm of a collider or inside "
+                     "(threshold %.2f %%); deepest: ",
+                     100.0 * skin.value, 1e3 * s.nearSkinDistance, 100.0 * skin.threshold) +
+                 place;
+  checks.push_back(skin);
+}
+
+QualityCheck selfIntersectionCheck(const Garment& garment, const Eigen::MatrixX3d& x, const QualitySettings& s) {
+  // Both sides of a seam count as one vertex: sewn vertex to vertex, or (non-conforming) vertex to edge.
+  std::vector<std::pair<int, int>> joined = garment.stitchPairs;
+  for (const GarmentEdgeStitch& e : garment.edgeStitches) {
+    joined.emplace_back(e.vertex, e.a);
+    joined.emplace_back(e.vertex, e.b);
+  }
+  const collision::SelfIntersections found = collision::countSelfIntersections(x, garment.triangles, joined);
+  QualityCheck c;
+  c.name = "self_intersections";
+  c.value = found.count;
+  c.threshold = s.maxSelfIntersections;
+  c.passed = c.value <= c.threshold;
+  c.triangle = found.firstTriangle;
+  c.otherTriangle = found.secondTriangle;
+  if (found.count > 0)
+    c.where = triangleName(garment, found.firstTriangle) + " and " + triangleName(garment, found.secondTriangle) +
+              at(centreOf(garment, x, found.firstTriangle));
+  c.message = format("self_intersections: %d pairs of garment triangles cross (threshold %d)", found.count,
+                     s.maxSelfIntersections) +
+              (c.where.empty() ? std::string() : "; first: " + c.where);
+  return c;
+}
+
+QualityCheck restCheck(const std::string& endStatus, const QualitySettings& s) {
+  QualityCheck c;
+  c.name = "at_rest";
+  c.value = endStatus == "AtRest" ? 1.0 : 0.0;
+  c.threshold = s.requireRest ? 1.0 : 0.0;
+  c.passed = c.value >= c.threshold;
+  c.message = c.value > 0.0
+                  ? std::string("at_rest: the run ended at rest")
+                  : "at_rest: the run ended with " + (endStatus.empty() ? std::string("no status") : endStatus) +
+                        ", not at rest" + (s.requireRest ? " (quality.require_rest)" : "");
+  return c;
+}
+
+}  // namespace
+
+QualitySettings qualitySettingsFrom(const Settings& settings) {
+  QualitySettings s;
+  s.maxStrain = settings.number("quality.max_strain");
+  s.maxInsideFraction = settings.number("quality.max_inside_fraction");
+  s.maxPenetrationDepth = settings.number("quality.max_penetration_depth");
+  s.nearSkinDistance = settings.number("quality.near_skin_distance");
+  s.maxNearSkinFraction = settings.number("quality.max_near_skin_fraction");
+  s.maxSelfIntersections = settings.integer("quality.max_self_intersections");
+  s.requireRest = settings.flag("quality.require_rest");
+  return s;
+}
+
+const QualityCheck* QualityReport::find(std::string_view name) const {
+  for (const QualityCheck& c : checks)
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+QualityReport checkDrapeQuality(const Garment& garment, const Eigen::MatrixX3d& positions,
+                                const collision::AvatarCollider* collider, double contactThickness,
+                                const std::string& endStatus, const QualitySettings& settings) {
+  QualityReport report;
+  report.checks.push_back(strainCheck(garment, positions, settings));
+  if (collider) colliderChecks(garment, positions, *collider, contactThickness, settings, report.checks);
+  report.checks.push_back(selfIntersectionCheck(garment, positions, settings));
+  report.checks.push_back(restCheck(endStatus, settings));
+  for (const QualityCheck& c : report.checks) report.passed = report.passed && c.passed;
+  return report;
+}
+
+QualityReport checkDrapeQuality(const Simulation& simulation, const std::string& endStatus) {
+  return checkDrapeQuality(simulation.garment(), simulation.positions(), simulation.collider(),
+                           simulation.contactThickness(), endStatus, qualitySettingsFrom(simulation.scene().settings));
+}
+
+}  // namespace drape
