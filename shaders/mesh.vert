@@ -9,6 +9,7 @@ layout(location = 5) in float a_strain;    // stretch fraction, or a large negat
 layout(location = 6) in float a_contact;   // 1 in contact, 0 otherwise
 
 uniform mat4 u_viewProjection;
+uniform float u_inset;  // metres: drawn this far inside along the normal (colliders: the contact thickness)
 
 out vec3 v_worldPos;
 out vec3 v_normal;
@@ -19,12 +20,14 @@ flat out float v_strain;
 out float v_contact;
 
 void main() {
-  v_worldPos = a_position;
+  float len = length(a_normal);
+  vec3 position = len > 0.0 ? a_position - (u_inset / len) * a_normal : a_position;
+  v_worldPos = position;
   v_normal = a_normal;
   v_bary = a_bary;
   v_panelColor = a_panelColor;
   v_domainColor = a_domainColor;
   v_strain = a_strain;
   v_contact = a_contact;
-  gl_Position = u_viewProjection * vec4(a_position, 1.0);
+  gl_Position = u_viewProjection * vec4(position, 1.0);
 }

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "drape/geometry/primitives.h"
 #include "drape/render/image_compare.h"
 #include "render_fixture.h"
 #include "synthetic_scenes.h"
@@ -36,12 +37,33 @@ TEST_F(RenderTest, FrontAndBackFacesAreVisiblyDifferent) {
   render::RenderOptions o = smallOptions();
   o.showGround = false;
   const auto bounds = square.bounds();
-  const Eigen::Vector3i front = centerPixel(renderer().render(square, render::presetCamera(render::ViewPreset::Front, bounds, 1.0), o));
-  const Eigen::Vector3i back = centerPixel(renderer().render(square, render::presetCamera(render::ViewPreset::Back, bounds, 1.0), o));
+  const Eigen::Vector3i front =
+      centerPixel(renderer().render(square, render::presetCamera(render::ViewPreset::Front, bounds, 1.0), o));
+  const Eigen::Vector3i back =
+      centerPixel(renderer().render(square, render::presetCamera(render::ViewPreset::Back, bounds, 1.0), o));
   // Front: clearly red. Back: darker and less saturated.
   EXPECT_GT(front.x(), front.y() + 80) << front.transpose();
   EXPECT_LT(back.x() - back.y(), front.x() - front.y() - 30) << front.transpose() << " / " << back.transpose();
   EXPECT_LT(back.sum(), front.sum());
+}
+
+// A body whose surface comes through the cloth by less than the contact thickness is drawn behind it (a cloth
+// resting within its thickness of the skin is not covered by patches of body); a body deeper through it shows.
+TEST_F(RenderTest, BodyWithinTheContactThicknessStaysBehindTheCloth) {
+  render::RenderOptions o = smallOptions();
+  o.showGround = false;
+  Snapshot s = flatSquare({0.8f, 0.05f, 0.05f});
+  const auto camera = render::presetCamera(render::ViewPreset::Front, s.bounds(), 1.0);
+  const auto redAt = [&](double through, double thickness) {
+    // A 1 m sphere whose front point lies `through` in front of the square's centre.
+    s.avatar = makeIcosphere(Eigen::Vector3d(0.0, 0.5, -1.0), 1.0 + through, 5);
+    s.contactThickness = thickness;
+    const Eigen::Vector3i c = centerPixel(renderer().render(s, camera, o));
+    return c.x() > c.y() + 80;
+  };
+  EXPECT_FALSE(redAt(0.001, 0.0)) << "without a contact thickness the body 1 mm through the cloth covers it";
+  EXPECT_TRUE(redAt(0.001, 0.002));
+  EXPECT_FALSE(redAt(0.005, 0.002)) << "a body 5 mm through the cloth is drawn over it";
 }
 
 TEST_F(RenderTest, PanelColourReachesThePixels) {
@@ -85,8 +107,8 @@ TEST_F(RenderTest, ModesChangeTheGarmentOnly) {
   const Snapshot scene = skirtScene();
   render::Image images[5];
   int k = 0;
-  for (DisplayMode mode : {DisplayMode::Shaded, DisplayMode::Wireframe, DisplayMode::Strain, DisplayMode::Domains,
-                           DisplayMode::Contacts})
+  for (DisplayMode mode :
+       {DisplayMode::Shaded, DisplayMode::Wireframe, DisplayMode::Strain, DisplayMode::Domains, DisplayMode::Contacts})
     images[k++] = renderer().render(scene, render::ViewPreset::Front, smallOptions(mode));
   for (int a = 0; a < 5; ++a)
     for (int b = a + 1; b < 5; ++b) {

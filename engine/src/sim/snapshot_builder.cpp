@@ -1,5 +1,6 @@
 #include "drape/sim/snapshot_builder.h"
 
+#include "cloth_model_builder.h"
 #include "drape/geometry/strain.h"
 
 namespace drape {
@@ -35,6 +36,7 @@ Snapshot makeSnapshot(const Scene& scene, const Garment& garment, const Eigen::M
   for (const auto& name : garment.panelNames) s.panelColors.push_back(scene.fabricOfPanel(name).color);
   s.triangleStrain = triangleStretch(garment.rest, positions, garment.triangles);
   s.avatar = mergedColliders(scene);
+  s.contactThickness = contactThickness(scene);
   s.stage = "placed";
   return s;
 }

@@ -54,6 +54,7 @@ struct Renderer::Impl {
   BoundingBox bounds;
   bool hasStrain = false;
   double strainMaximum = 0.0;
+  float avatarInset = 0.0f;  // metres, Snapshot::contactThickness
   double lastStrainMin = 0.0, lastStrainMax = 0.0;
   std::string rendererName;
 
@@ -167,6 +168,7 @@ void Renderer::upload(const Snapshot& snapshot) {
   r.avatarIndexCount = static_cast<GLsizei>(avatar.indices.size());
   r.hasStrain = garment.hasStrain;
   r.strainMaximum = garment.strainMaximum;
+  r.avatarInset = static_cast<float>(snapshot.contactThickness);
   r.bounds = snapshot.bounds();
 }
 
@@ -305,12 +307,14 @@ void Renderer::Impl::drawMeshes(const Eigen::Matrix4f& viewProjection, const Cam
   if (options.showAvatar && avatarIndexCount > 0) {
     gl.glUniform1i(p.uniform("u_mode"), kAvatar);
     gl.glUniform1i(p.uniform("u_edges"), 0);
+    gl.glUniform1f(p.uniform("u_inset"), avatarInset);
     gl.glBindVertexArray(avatarVao);
     gl.glDrawElements(GL_TRIANGLES, avatarIndexCount, GL_UNSIGNED_INT, nullptr);
   }
   if (garmentVertexCount > 0) {
     const bool wire = options.mode == DisplayMode::Wireframe;
     gl.glUniform1i(p.uniform("u_mode"), shaderMode(options.mode));
+    gl.glUniform1f(p.uniform("u_inset"), 0.0f);
     gl.glUniform1i(p.uniform("u_edges"), wire || options.wireframeOverlay);
     if (wire)
       gl.glUniform4f(p.uniform("u_edgeColor"), 0.13f, 0.17f, 0.24f, 0.90f);

@@ -21,6 +21,9 @@ struct Snapshot {
   Eigen::VectorXi vertexContact;   // |V| 1 where the vertex is in contact, may be empty
   // Colliders
   TriangleMesh avatar;             // may have no triangles
+  // Metres: cloth this close to a collider rests on it (the contact thickness). The renderer draws the colliders
+  // this far inside their surface, so that cloth resting within the contact band is never hidden by the body.
+  double contactThickness = 0.0;
   // State
   double time = 0.0;               // simulated seconds
   std::string stage;               // "placed", "preview", "drape", "done"
