@@ -29,16 +29,17 @@ TEST(QualityVerdict, FinishedDrapeShowsTheVerdictInTheStatisticsDockAndTheLog) {
   QTest::qWait(100);  // the finished snapshot
 
   // The tablecloth has a sphere collider: every check, the collider's included.
-  const QStringList expected = {"max_strain",         "inside_fraction",    "penetration_depth",
-                                "near_skin_fraction", "self_intersections", "at_rest"};
+  const QStringList expected = {
+      "max_strain",         "inside_fraction", "penetration_depth", "near_skin_fraction", "outward_faces",
+      "self_intersections", "at_rest"};
   ASSERT_EQ(panel->qualityRows(), expected.size());
   for (int row = 0; row < expected.size(); ++row) {
     EXPECT_EQ(panel->qualityCell(row, 0), expected[row]);
     EXPECT_FALSE(panel->qualityCell(row, 1).isEmpty());
     EXPECT_FALSE(panel->qualityCell(row, 2).isEmpty());
   }
-  EXPECT_EQ(panel->qualityCell(5, 1), "no");
-  EXPECT_EQ(panel->qualityCell(5, 2), "yes");
+  EXPECT_EQ(panel->qualityCell(6, 1), "no");
+  EXPECT_EQ(panel->qualityCell(6, 2), "yes");
   EXPECT_TRUE(panel->qualityVerdict().startsWith("failed")) << panel->qualityVerdict().toStdString();
   // The stretch shown is the finished garment's.
   const auto snapshot = window->currentSnapshot();

@@ -195,6 +195,36 @@ TEST(DrapeQuality, VertexInsideABoxColliderHasItsDepth) {
   EXPECT_TRUE(none.passed);
 }
 
+TEST(DrapeQuality, FacesTurnedIntoTheColliderFailOutwardFaces) {
+  // Four triangles lying 5 mm above the top face of a box [-0.5, 0.5]^3, wound counter-clockwise seen from above
+  // (outward), and one 5 cm above (not on the collider: it does not count).
+  const collision::AvatarCollider box(makeBox(Vector3d::Constant(-0.5), Vector3d::Constant(0.5)));
+  Eigen::MatrixX3d x(15, 3);
+  for (int t = 0; t < 5; ++t) {
+    const double y = t < 4 ? 0.505 : 0.55, x0 = -0.4 + 0.15 * t;
+    x.row(3 * t) << x0, y, 0.0;
+    x.row(3 * t + 1) << x0 + 0.1, y, -0.1;
+    x.row(3 * t + 2) << x0, y, -0.1;
+  }
+  Garment g = looseTriangles(x);
+  for (int t = 0; t < 5; ++t) {
+    const Vector3d a = x.row(3 * t), b = x.row(3 * t + 1), c = x.row(3 * t + 2);
+    ASSERT_GT((b - a).cross(c - a).y(), 0.0);  // the premise: up, away from the box
+  }
+  const QualityReport right = checkDrapeQuality(g, x, &box, 0.002, "AtRest", QualitySettings{});
+  EXPECT_EQ(check(right, "outward_faces").value, 1.0);
+  EXPECT_TRUE(check(right, "outward_faces").passed);
+  EXPECT_EQ(check(right, "outward_faces").triangle, -1);
+  // Triangle 2 turned over: 3 of the 4 faces on the box face away from it; the one above still does not count.
+  std::swap(g.triangles(2, 1), g.triangles(2, 2));
+  std::swap(g.triangles(4, 1), g.triangles(4, 2));
+  const QualityReport turned = checkDrapeQuality(g, x, &box, 0.002, "AtRest", QualitySettings{});
+  EXPECT_DOUBLE_EQ(check(turned, "outward_faces").value, 0.75);
+  EXPECT_FALSE(check(turned, "outward_faces").passed);
+  EXPECT_EQ(check(turned, "outward_faces").triangle, 2);
+  EXPECT_FALSE(turned.passed);
+}
+
 TEST(DrapeQuality, MaxStrainIsTheLargestPrincipalStretch) {
   // Triangle 0 congruent to its rest shape; triangle 1 stretched 1.3x along x and 1.1x along y.
   Eigen::MatrixX3d x(6, 3);

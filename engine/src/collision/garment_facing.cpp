@@ -18,13 +18,17 @@ GarmentFacing garmentFacing(const Eigen::MatrixX3d& positions, const Eigen::Matr
           SurfacePoint s;
           if (!body.closest((a + b + c) / 3.0, s, nearDistance) || s.signedDistance < 0.0) continue;
           ++facing.nearFaces;
-          if ((b - a).cross(c - a).dot(s.normal) > 0.0) ++facing.outwardFaces;
+          if ((b - a).cross(c - a).dot(s.normal) > 0.0)
+            ++facing.outwardFaces;
+          else if (facing.inwardFace < 0)
+            facing.inwardFace = static_cast<int>(f);
         }
         return facing;
       },
       [](GarmentFacing x, const GarmentFacing& y) {
         x.nearFaces += y.nearFaces;
         x.outwardFaces += y.outwardFaces;
+        if (x.inwardFace < 0 || (y.inwardFace >= 0 && y.inwardFace < x.inwardFace)) x.inwardFace = y.inwardFace;
         return x;
       });
 }

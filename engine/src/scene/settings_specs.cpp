@@ -226,6 +226,8 @@ const std::vector<SettingSpec>& Settings::specs() {
        "largest fraction of garment vertices near the skin (quality.near_skin_distance) that passes", 0, 1},
       {"quality.max_self_intersections", T::Integer, "100", "",
        "largest number of crossing pairs of garment triangles (sharing no vertex, seams sewn) that passes", 0, 1e9},
+      {"quality.min_outward_fraction", T::Number, "0.98", "",
+       "smallest fraction of the garment faces on a collider (within 1 cm) facing away from it that passes", 0, 1},
       {"quality.require_rest", T::Boolean, "true", "", "the run must end at rest (not at the time or step limit)"},
       {"camera.view", T::Choice, "three-quarter", "", "default camera preset", -1e300, 1e300,
        {"front", "back", "left", "right", "three-quarter"}},

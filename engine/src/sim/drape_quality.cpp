@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "drape/collision/avatar_collider.h"
+#include "drape/collision/garment_facing.h"
 #include "drape/collision/self_intersection.h"
 #include "drape/geometry/strain.h"
 #include "drape/scene/settings.h"
@@ -120,6 +121,29 @@ void colliderChecks(const Garment& garment, const Eigen::MatrixX3d& x, const col
   checks.push_back(skin);
 }
 
+// Faces whose centroid lies within this distance of a collider count for outward_faces, metres: the cloth on the
+// body, not the upper layers of the folds over it.
+constexpr double kOutwardNearDistance = 0.01;
+
+QualityCheck outwardCheck(const Garment& garment, const Eigen::MatrixX3d& x, const collision::AvatarCollider& collider,
+                          const QualitySettings& s) {
+  const collision::GarmentFacing facing =
+      collision::garmentFacing(x, garment.triangles, collider, kOutwardNearDistance);
+  QualityCheck c;
+  c.name = "outward_faces";
+  c.value = facing.outwardFraction();
+  c.threshold = s.minOutwardFraction;
+  c.passed = c.value >= c.threshold;
+  c.triangle = facing.inwardFace;
+  if (facing.inwardFace >= 0)
+    c.where = triangleName(garment, facing.inwardFace) + at(centreOf(garment, x, facing.inwardFace));
+  c.message =
+      format("outward_faces: %.1f %% of the %d garment faces on a collider face away from it (threshold %.1f %%)",
+             100.0 * c.value, facing.nearFaces, 100.0 * c.threshold) +
+      (c.where.empty() ? std::string() : "; facing into it: " + c.where);
+  return c;
+}
+
 QualityCheck selfIntersectionCheck(const Garment& garment, const Eigen::MatrixX3d& x, const QualitySettings& s) {
   // Both sides of a seam count as one vertex: sewn vertex to vertex, or (non-conforming) vertex to edge.
   std::vector<std::pair<int, int>> joined = garment.stitchPairs;
@@ -167,6 +191,7 @@ QualitySettings qualitySettingsFrom(const Settings& settings) {
   s.nearSkinDistance = settings.number("quality.near_skin_distance");
   s.maxNearSkinFraction = settings.number("quality.max_near_skin_fraction");
   s.maxSelfIntersections = settings.integer("quality.max_self_intersections");
+  s.minOutwardFraction = settings.number("quality.min_outward_fraction");
   s.requireRest = settings.flag("quality.require_rest");
   return s;
 }
@@ -182,7 +207,10 @@ QualityReport checkDrapeQuality(const Garment& garment, const Eigen::MatrixX3d& 
                                 const std::string& endStatus, const QualitySettings& settings) {
   QualityReport report;
   report.checks.push_back(strainCheck(garment, positions, settings));
-  if (collider) colliderChecks(garment, positions, *collider, contactThickness, settings, report.checks);
+  if (collider) {
+    colliderChecks(garment, positions, *collider, contactThickness, settings, report.checks);
+    report.checks.push_back(outwardCheck(garment, positions, *collider, settings));
+  }
   report.checks.push_back(selfIntersectionCheck(garment, positions, settings));
   report.checks.push_back(restCheck(endStatus, settings));
   for (const QualityCheck& c : report.checks) report.passed = report.passed && c.passed;

@@ -11,6 +11,7 @@ namespace drape::collision {
 struct GarmentFacing {
   int nearFaces = 0;     // faces whose centroid lies outside the body, within nearDistance of it
   int outwardFaces = 0;  // of those, the faces whose normal points away from the body
+  int inwardFace = -1;   // the lowest-numbered near face that points into the body; -1: none
   // outwardFaces / nearFaces (1 when no face is near the body).
   double outwardFraction() const { return nearFaces > 0 ? double(outwardFaces) / nearFaces : 1.0; }
 };

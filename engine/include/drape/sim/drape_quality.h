@@ -27,14 +27,19 @@ struct QualitySettings {
   double nearSkinDistance = 1e-3;     // metres: a vertex nearer to a collider's surface than this (or inside) is near
   double maxNearSkinFraction = 0.01;  // fraction of garment vertices near or inside a collider
   int maxSelfIntersections = 100;     // pairs of garment triangles that cross
+  // Smallest fraction of the garment faces resting near a collider (centroid within kOutwardNearDistance) whose
+  // normal points away from it: a panel wound into the body renders in the inside colour and exports inside out.
+  // Folds and crumples lying on the body turn a few faces over legitimately.
+  double minOutwardFraction = 0.98;
   bool requireRest = true;            // the run must end at rest (end status "AtRest")
 };
 QualitySettings qualitySettingsFrom(const Settings& settings);
 
 struct QualityCheck {
-  std::string name;  // max_strain, inside_fraction, penetration_depth, near_skin_fraction, self_intersections, at_rest
+  // max_strain, inside_fraction, penetration_depth, near_skin_fraction, outward_faces, self_intersections, at_rest
+  std::string name;
   double value = 0.0;      // measured; at_rest: 1 at rest, 0 not
-  double threshold = 0.0;  // the largest value that passes; at_rest: the smallest (1 required, 0 not)
+  double threshold = 0.0;  // the largest value that passes; at_rest, outward_faces: the smallest
   bool passed = true;
   int vertex = -1;         // the garment vertex where it is worst (penetration, near skin), -1: none
   int triangle = -1;       // the garment triangle where it is worst (strain, the first crossing pair), -1: none
