@@ -204,7 +204,8 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"solver.stitch_stiffness", T::Number, "1e4", "N/m", "zero-length stitch spring stiffness", 0, 1e9},
       {"solver.pin_stiffness", T::Number, "1e4", "N/m", "pin spring stiffness", 0, 1e9},
       // Contact
-      {"contact.stiffness", T::Number, "100", "N/m", "penalty stiffness of avatar and cloth contact (paper: 1e2)", 0, 1e9},
+      {"contact.stiffness", T::Number, "1000", "N/m",
+       "penalty stiffness of avatar and cloth contact (paper: 1e2, which lets a tight garment rest on the skin)", 0, 1e9},
       {"contact.thickness", T::Number, "", "m", "override: contact thickness (default: the fabric's thickness, at least 2 mm)", 0, 0.1},
       {"contact.friction", T::Boolean, "true", "", "Coulomb friction (off, or fabric friction 0: no friction term)"},
       {"contact.friction_majorizer", T::Boolean, "true", "",
