@@ -23,6 +23,7 @@
 #include "drape/qt/statistics_panel.h"
 #include "drape/qt/viewport_widget.h"
 #include "gui_test_support.h"
+#include "scaled_obj.h"
 
 namespace drape::test {
 namespace {
@@ -272,20 +273,7 @@ TEST_F(MainWindowTest, ClosingDuringADrapeIsSafe) {
 TEST_F(MainWindowTest, AvatarInCentimetresIsWarnedAboutInTheLog) {
   const std::filesystem::path dir = testOutputDir() / "gui_avatar_units";
   std::filesystem::create_directories(dir);
-  std::ifstream in(assetsDir() / "avatars" / "female.obj");
-  std::ofstream body(dir / "female_cm.obj");
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("v ", 0) == 0) {
-      std::istringstream coords(line.substr(2));
-      double x, y, z;
-      coords >> x >> y >> z;
-      body << "v " << 100 * x << " " << 100 * y << " " << 100 * z << "\n";
-    } else {
-      body << line << "\n";
-    }
-  }
-  body.close();
+  test::writeScaledObj(assetsDir() / "avatars" / "female.obj", 100.0, dir / "female_cm.obj");
   std::ofstream(dir / "scene.json") << R"({"pattern": ")" << (assetsDir() / "patterns" / "tshirt.json").generic_string()
                                     << R"(", "avatar": {"file": "female_cm.obj"}})";
   ASSERT_TRUE(window->openFile(dir / "scene.json"));

@@ -10,6 +10,7 @@
 #include "drape/avatar/avatar_loader.h"
 #include "drape/core/input_error.h"
 #include "drape/geometry/primitives.h"
+#include "scaled_obj.h"
 #include "shared_data.h"
 
 namespace drape {
@@ -60,23 +61,11 @@ std::filesystem::path writeFile(const std::string& name, const std::string& text
   return file;
 }
 
-// An OBJ file with every vertex line's coordinates multiplied by `factor`, everything else as it was.
+// An OBJ file with every vertex line's coordinates multiplied by `factor`, written next to the test's other files.
 std::filesystem::path scaledObj(const std::filesystem::path& original, double factor, const std::string& name) {
-  std::ifstream in(original);
-  std::ostringstream out;
-  out.precision(9);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("v ", 0) == 0) {
-      std::istringstream coords(line.substr(2));
-      double x, y, z;
-      coords >> x >> y >> z;
-      out << "v " << x * factor << " " << y * factor << " " << z * factor << "\n";
-    } else {
-      out << line << "\n";
-    }
-  }
-  return writeFile(name, out.str());
+  const std::filesystem::path file = writeFile(name, "");
+  test::writeScaledObj(original, factor, file);
+  return file;
 }
 
 std::string unitOption(const char* unit) {

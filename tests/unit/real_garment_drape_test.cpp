@@ -22,6 +22,7 @@
 #include "drape/avatar/mannequin.h"
 #include "drape/collision/avatar_collider.h"
 #include "drape/collision/avatar_contact.h"
+#include "drape/collision/garment_facing.h"
 #include "drape/geometry/primitives.h"
 #include "drape/scene/scene.h"
 #include "drape/sim/simulation.h"
@@ -34,10 +35,12 @@ struct DrapeOutcome {
   int initiallyInside = 0;      // garment vertices inside the body as placed
   double maxPenetration = 0.0;  // metres, largest depth of a vertex inside the body after the drape (0: none)
   double contactThickness = 0.0;
-  double maxStitchGap = 0.0;  // metres
-  double topY = 0.0;          // metres, highest garment vertex
-  double centroidY = 0.0;     // metres, mean vertex height
-  double nearFraction = 0.0;  // vertices within 5 cm of the body surface (outside or on it)
+  double maxStitchGap = 0.0;     // metres
+  double topY = 0.0;             // metres, highest garment vertex
+  double centroidY = 0.0;        // metres, mean vertex height
+  double nearFraction = 0.0;     // vertices within 5 cm of the body surface (outside or on it)
+  double onSkinFraction = 0.0;   // vertices within 1 mm of the body surface or inside it
+  double outwardFraction = 0.0;  // faces within 1 cm of the body (garmentFacing) whose normal points away from it
   bool diverged = false;
   bool atRest = false;
   double simTime = 0.0;   // s
@@ -71,13 +74,16 @@ DrapeOutcome drape(SceneRequest request, double edge, double maxSimTime) {
   out.simTime = sim.time();
 
   const Eigen::MatrixX3d x = sim.positions();
-  int near = 0;
+  int near = 0, onSkin = 0;
   for (int v = 0; v < x.rows(); ++v) {
     const double d = body.signedDistance(x.row(v).transpose());
     out.maxPenetration = std::max(out.maxPenetration, -d);
     near += d < 0.05;
+    onSkin += d < 1e-3;
   }
   out.nearFraction = static_cast<double>(near) / static_cast<double>(x.rows());
+  out.onSkinFraction = static_cast<double>(onSkin) / static_cast<double>(x.rows());
+  out.outwardFraction = collision::garmentFacing(x, sim.garment().triangles, body, 0.01).outwardFraction();
   for (auto [a, b] : sim.garment().stitchPairs)
     out.maxStitchGap = std::max(out.maxStitchGap, (x.row(a) - x.row(b)).norm());
   out.topY = x.col(1).maxCoeff();
@@ -85,11 +91,11 @@ DrapeOutcome drape(SceneRequest request, double edge, double maxSimTime) {
   std::printf(
       "[real drape] %s on %s: %d vertices, %d inside as placed; after %.3f s simulated (%s, %.1f s wall): "
       "max penetration %.2f mm (thickness %.1f mm), max stitch gap %.2f mm, top y %.3f m, centroid y %.3f m, "
-      "%.0f%% within 5 cm of the body\n",
+      "%.0f%% within 5 cm of the body, %.2f%% within 1 mm, %.1f%% of the faces on it outward\n",
       pattern.filename().string().c_str(), avatar.filename().string().c_str(), static_cast<int>(x.rows()),
       out.initiallyInside, out.simTime, out.diverged ? "diverged" : (out.atRest ? "at rest" : "time limit"),
       out.wallTime, 1e3 * out.maxPenetration, 1e3 * out.contactThickness, 1e3 * out.maxStitchGap, out.topY,
-      out.centroidY, 100.0 * out.nearFraction);
+      out.centroidY, 100.0 * out.nearFraction, 100.0 * out.onSkinFraction, 100.0 * out.outwardFraction);
   return out;
 }
 
@@ -165,6 +171,9 @@ TEST(RealGarmentDrape, ShirtOnMeanAllDrapesToRest) {
   const DrapeOutcome o = drape(shirt, body, 0.04, 1.5);
   EXPECT_TRUE(o.atRest) << "no early stop within " << o.simTime << " s";
   expectHangsOnTorso(o, mannequinLevels(loadBodyMeasurements(measurements)));
+  // At rest the cloth lies in its contact thickness, not on the skin, and right side out (issue 46's targets).
+  EXPECT_LE(o.onSkinFraction, 0.01);
+  EXPECT_GE(o.outwardFraction, 0.98);
 }
 
 // Garment-Pattern-Generator places its panels around a body whose origin is at the hips; mean_all stands on the
@@ -194,7 +203,8 @@ TEST(RealGarmentDrape, GarmentPatternGeneratorSkirtMovedOntoMeanAllHangsFromTheW
   const Simulation moved(loadScene(request));
   EXPECT_EQ(placementWarnings(moved.scene()), 0);
 
-  const DrapeOutcome o = drape(request, 0.04, 2.0);
+  // At rest after about 3.1 s: the stiff contact band lets the loose skirt creep on the hips for a while.
+  const DrapeOutcome o = drape(request, 0.04, 4.0);
   EXPECT_FALSE(o.diverged);
   EXPECT_TRUE(o.atRest) << "no early stop within " << o.simTime << " s";
   EXPECT_LE(o.maxPenetration, o.contactThickness) << "a garment vertex ended inside the body";
