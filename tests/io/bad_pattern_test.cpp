@@ -63,6 +63,8 @@ const std::vector<BadPatternCase>& badPatternCases() {
       {"pattern_missing_translation.json", {"panel 'front'", "missing field 'translation'"}},
       {"pattern_rotation_wrong_size.json", {"panel 'front'", "'rotation' must be an array of 3 numbers"}},
       {"pattern_panel_order_unknown_panel.json", {"panel_order", "'collar'", "not in 'panels'"}},
+      {"pattern_duplicate_panel.json", {"panel 'front' defined twice"}},
+      {"pattern_duplicate_key_in_panel.json", {"panel 'front': key 'translation' appears twice"}},
   };
   return cases;
 }

@@ -191,7 +191,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"scene_bad_avatar_units.json", {"avatar.units", "'inch' is not one of m cm mm in"}},
         BadScene{"scene_avatar_not_found.json", {"no_such_body.obj"}},
         BadScene{"scene_unknown_fabric.json", {"unknown fabric preset 'velvet'"}},
-        BadScene{"scene_invalid_json.json", {"invalid JSON: parse error at line 2"}}),
+        BadScene{"scene_invalid_json.json", {"invalid JSON: parse error at line 2"}},
+        BadScene{"scene_duplicate_setting.json", {"key 'mesh.target_edge_length' appears twice"}},
+        BadScene{"scene_duplicate_collider_field.json", {"key 'colliders[0].radius' appears twice"}}),
     [](const auto& info) {
       std::string name = info.param.file;
       return name.substr(0, name.find('.'));
