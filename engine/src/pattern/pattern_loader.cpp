@@ -157,7 +157,8 @@ Panel readPanel(const std::string& name, const Json& pj, const JsonFields& f, co
   panel.translation = f.readVec3(f.member(pj, "translation", where), where, "'translation'");
   panel.rotationDeg = f.readVec3(f.member(pj, "rotation", where), where, "'rotation'");
   if (const auto label = pj.find("label"); label != pj.end()) panel.label = f.readString(*label, where, "'label'");
-  detail::validatePanelOutline(panel, f);
+  detail::validatePanelPlacement(panel, props.unitsInMeter, f);
+  detail::validatePanelOutline(panel, props.unitsInMeter, f);
   return panel;
 }
 
