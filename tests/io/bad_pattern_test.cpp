@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "drape/core/input_error.h"
+#include "drape/garment/garment_builder.h"
 #include "drape/pattern/pattern_loader.h"
 #include "shared_data.h"
 
@@ -63,6 +64,14 @@ const std::vector<BadPatternCase>& badPatternCases() {
       {"pattern_missing_translation.json", {"panel 'front'", "missing field 'translation'"}},
       {"pattern_rotation_wrong_size.json", {"panel 'front'", "'rotation' must be an array of 3 numbers"}},
       {"pattern_panel_order_unknown_panel.json", {"panel_order", "'collar'", "not in 'panels'"}},
+      {"pattern_duplicate_panel.json", {"panel 'front' defined twice"}},
+      {"pattern_duplicate_key_in_panel.json", {"panel 'front': key 'translation' appears twice"}},
+      {"pattern_tiny_panel.json",
+       {"panel 'tiny': area 1e-18 m^2 is too small to mesh (its outline is 1.414e-09 m across"}},
+      {"pattern_huge_panel.json", {"panel 'front': outline is 1414 m across (at most 100 m)"}},
+      {"pattern_translation_1e308.json",
+       {"panel 'front': 'translation' (1e+308, 0, 0) is 1e+306 m from the origin (at most 100 m)"}},
+      {"pattern_rotation_1e308.json", {"panel 'front': 'rotation' y = 1e+308 degrees is out of range [-360, 360]"}},
   };
   return cases;
 }
@@ -106,6 +115,23 @@ TEST(BadPatternTable, CoversEveryBadPatternFile) {
   }
   EXPECT_GE(count, 22);
   EXPECT_EQ(size_t(count), listed.size());
+}
+
+// A needle-thin spike (tip angle 1e-10 rad) passes the pattern checks but meshes into triangles of almost no
+// area; the garment builder refuses it naming the panel, before a solver divides by that area.
+TEST(BadPatternMeshing, NeedleSpikeIsRefusedWhenMeshed) {
+  const std::filesystem::path file = test::testDataDir() / "bad" / "garment_needle_spike.json";
+  const Pattern pattern = loadPattern(file);
+  MeshingOptions options;
+  options.targetEdgeLength = 0.02;
+  try {
+    buildGarment(pattern, options);
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind(file.string() + ": panel 'spiked': meshing gives triangle ", 0), 0u) << message;
+    EXPECT_NE(message.find("too sharp"), std::string::npos) << message;
+  }
 }
 
 TEST(BadPatternTable, MissingFileIsAnInputError) {

@@ -191,7 +191,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"scene_bad_avatar_units.json", {"avatar.units", "'inch' is not one of m cm mm in"}},
         BadScene{"scene_avatar_not_found.json", {"no_such_body.obj"}},
         BadScene{"scene_unknown_fabric.json", {"unknown fabric preset 'velvet'"}},
-        BadScene{"scene_invalid_json.json", {"invalid JSON: parse error at line 2"}}),
+        BadScene{"scene_invalid_json.json", {"invalid JSON: parse error at line 2"}},
+        BadScene{"scene_duplicate_setting.json", {"key 'mesh.target_edge_length' appears twice"}},
+        BadScene{"scene_duplicate_collider_field.json", {"key 'colliders[0].radius' appears twice"}},
+        BadScene{"scene_collider_huge_radius.json", {"collider 0", "radius 1e+308 m is too large (at most 100 m)"}},
+        BadScene{"scene_collider_far_center.json",
+                 {"collider 0", "field 'center': y = -1e+308 m is out of range [-100, 100] m"}},
+        BadScene{"scene_collider_far_box.json", {"collider 0", "field 'max': y = 1e+300 m is out of range"}},
+        BadScene{"scene_translate_too_far.json",
+                 {"setting 'placement.translate'", "y = 1e+308 is out of range [-100, 100] m"}}),
     [](const auto& info) {
       std::string name = info.param.file;
       return name.substr(0, name.find('.'));

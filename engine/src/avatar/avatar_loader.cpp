@@ -20,6 +20,9 @@
 namespace drape {
 namespace {
 
+// Most corners of one polygon (docs/FORMATS.md "Limits"); real scans and modelled bodies use triangles and quads.
+constexpr unsigned kMaxFaceCorners = 1000;
+
 std::string lowerExtension(const std::filesystem::path& file) {
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -37,6 +40,25 @@ std::string formatPoint(const aiVector3D& p) {
   return out.str();
 }
 
+// Throws InputError for a face with more than kMaxFaceCorners corners, naming its line for OBJ files.
+void refuseLargePolygons(const aiScene& scene, const std::filesystem::path& file) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh* mesh = scene.mMeshes[m];
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const unsigned corners = mesh->mFaces[f].mNumIndices;
+      if (corners <= kMaxFaceCorners) continue;
+      const std::string limit = " (at most " + std::to_string(kMaxFaceCorners) + ")";
+      if (lowerExtension(file) == ".obj") {
+        const detail::ObjProblem big = detail::findLargeObjFace(file, kMaxFaceCorners);
+        if (big.found) fail(file, "line " + std::to_string(big.line) + ": " + big.message + limit);
+      }
+      const std::string name = mesh->mName.length > 0 ? std::string(" '") + mesh->mName.C_Str() + "'" : "";
+      fail(file, "mesh " + std::to_string(m) + name + " face " + std::to_string(f) + " has " + std::to_string(corners) +
+                     " vertices" + limit);
+    }
+  }
+}
+
 // assimp's reading of the file: triangulated, node transforms applied, normals/UVs/materials stripped, points
 // and lines removed. No aiProcess_JoinIdenticalVertices: loadAvatar welds equal positions itself with a hash
 // map, which also welds across meshes and is faster (1M-triangle OBJ: everything after parsing takes 0.4 s CPU;
@@ -48,10 +70,16 @@ const aiScene* readScene(Assimp::Importer& importer, const std::filesystem::path
                                                           aiComponent_TEXTURES | aiComponent_LIGHTS |
                                                           aiComponent_CAMERAS | aiComponent_MATERIALS);
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const unsigned flags =
-      aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType;
-  const aiScene* scene = importer.ReadFile(file.string(), flags);
-  if (scene) return scene;
+  // Read without post-processing first: a polygon with very many corners is refused before triangulation, whose
+  // ear clipping takes time quadratic or worse in the corner count (a 100k-corner face ran for minutes).
+  const aiScene* scene = importer.ReadFile(file.string(), 0);
+  if (scene) {
+    refuseLargePolygons(*scene, file);
+    const unsigned flags =
+        aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType;
+    scene = importer.ApplyPostProcessing(flags);
+    if (scene) return scene;
+  }
 
   const std::string reason = importer.GetErrorString();
   if (lowerExtension(file) == ".obj") {

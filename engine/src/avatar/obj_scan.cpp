@@ -86,4 +86,21 @@ ObjProblem findBadObjFaceIndex(const std::filesystem::path& file) {
   return problem;
 }
 
+ObjProblem findLargeObjFace(const std::filesystem::path& file, unsigned maxCorners) {
+  ObjProblem problem;
+  int face = 0;
+  forEachObjLine(file, [&](int lineNumber, const std::string& keyword, const std::string& rest) {
+    if (keyword != "f") return false;
+    ++face;
+    std::istringstream words(rest);
+    std::string corner;
+    unsigned corners = 0;
+    while (words >> corner) ++corners;
+    if (corners <= maxCorners) return false;
+    problem = {true, lineNumber, "face " + std::to_string(face) + " with " + std::to_string(corners) + " vertices"};
+    return true;
+  });
+  return problem;
+}
+
 }  // namespace drape::detail

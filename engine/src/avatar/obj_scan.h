@@ -18,4 +18,7 @@ ObjProblem findNonFiniteObjVertex(const std::filesystem::path& file);
 // The first face ("f ...") with a vertex reference that is 0 or out of range (negative ones resolved as in OBJ).
 ObjProblem findBadObjFaceIndex(const std::filesystem::path& file);
 
+// The first face ("f ...") with more than maxCorners corners: "face F with N vertices".
+ObjProblem findLargeObjFace(const std::filesystem::path& file, unsigned maxCorners);
+
 }  // namespace drape::detail

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "drape/core/input_error.h"
@@ -30,15 +31,95 @@ std::string describeParseFailure(const std::string& text, const nlohmann::json::
          ")";
 }
 
-nlohmann::json parse(const std::string& text, const std::string& source) {
+namespace {
+
+// SAX handler that records the first key repeated within one object.
+class DuplicateKeyFinder : public nlohmann::json_sax<nlohmann::json> {
+ public:
+  std::optional<DuplicateKey> found;
+
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override { return open(true); }
+  bool start_array(std::size_t) override { return open(false); }
+  bool end_object() override { return close(); }
+  bool end_array() override { return close(); }
+  bool key(string_t& key) override {
+    Frame& top = m_frames.back();
+    if (top.keys.insert(key).second) {
+      top.current = key;
+      return true;
+    }
+    DuplicateKey duplicate;
+    for (size_t i = 0; i + 1 < m_frames.size(); ++i)
+      duplicate.path.push_back(m_frames[i].object ? m_frames[i].current
+                                                  : "[" + std::to_string(m_frames[i].items - 1) + "]");
+    duplicate.key = key;
+    found = std::move(duplicate);
+    return false;  // stop parsing
+  }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::json::exception&) override { return false; }
+
+ private:
+  struct Frame {
+    bool object = false;
+    std::set<std::string> keys;  // objects: keys so far
+    std::string current;         // objects: the key whose value is being read
+    size_t items = 0;            // arrays: values so far
+  };
+  std::vector<Frame> m_frames;
+
+  bool value() {
+    if (!m_frames.empty() && !m_frames.back().object) ++m_frames.back().items;
+    return true;
+  }
+  bool open(bool object) {
+    value();
+    m_frames.push_back({object, {}, {}, 0});
+    return true;
+  }
+  bool close() {
+    m_frames.pop_back();
+    return true;
+  }
+};
+
+}  // namespace
+
+std::string DuplicateKey::dotted() const {
+  std::string out;
+  for (const std::string& part : path) out += (out.empty() || part[0] == '[' ? "" : ".") + part;
+  return out + (out.empty() ? "" : ".") + key;
+}
+
+std::optional<DuplicateKey> findDuplicateKey(const std::string& text) {
+  DuplicateKeyFinder finder;
+  nlohmann::json::sax_parse(text, &finder);
+  return finder.found;
+}
+
+void refuseDuplicateKeys(const std::string& text, const std::string& source) {
+  if (const auto duplicate = findDuplicateKey(text))
+    throw InputError(source + ": key '" + duplicate->dotted() + "' appears twice");
+}
+
+nlohmann::json parse(const std::string& text, const std::string& source, DuplicateKeys duplicates) {
+  nlohmann::json j;
   try {
-    return nlohmann::json::parse(text);
+    j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     throw InputError(source + ": invalid JSON: " + describeParseFailure(text, e));
   }
+  if (duplicates == DuplicateKeys::Refuse) refuseDuplicateKeys(text, source);
+  return j;
 }
 
-nlohmann::json parseFile(const std::filesystem::path& file) {
+nlohmann::json parseFile(const std::filesystem::path& file, DuplicateKeys duplicates, std::string* text) {
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) throw InputError(file.string() + ": file not found");
   if (std::filesystem::is_directory(file, ec)) throw InputError(file.string() + ": is a directory, not a file");
@@ -46,7 +127,8 @@ nlohmann::json parseFile(const std::filesystem::path& file) {
   if (!in) throw InputError(file.string() + ": cannot open file for reading");
   std::ostringstream ss;
   ss << in.rdbuf();
-  return parse(ss.str(), file.string());
+  if (text) *text = ss.str();
+  return parse(ss.str(), file.string(), duplicates);
 }
 
 double number(const nlohmann::json& j, const std::string& key, const std::string& where) {

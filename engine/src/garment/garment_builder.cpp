@@ -48,6 +48,26 @@ void checkStitchSide(const Pattern& pattern, int s, const StitchSide& side, cons
   throw InputError(msg.str());
 }
 
+// Smallest rest area of a mesh triangle, m^2. The cloth models divide by it (the Newton membrane refuses twice the
+// area at or below 1e-14 m^2, the preview leaves out triangles at or below 1e-14 m^2); a panel that passed the
+// pattern checks can still have a corner too sharp to mesh, and that is the file's problem, so it is refused here
+// naming the panel rather than as an internal error of the solver.
+constexpr double kMinTriangleArea = 1e-14;
+
+void checkRestAreas(const PanelMesh& mesh, const std::string& context) {
+  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
+    const Eigen::Vector2d a = mesh.vertices.row(mesh.triangles(t, 0)).transpose();
+    const Eigen::Vector2d ab = mesh.vertices.row(mesh.triangles(t, 1)).transpose() - a;
+    const Eigen::Vector2d ac = mesh.vertices.row(mesh.triangles(t, 2)).transpose() - a;
+    const double area = 0.5 * std::abs(ab.x() * ac.y() - ab.y() * ac.x());
+    if (area > kMinTriangleArea) continue;
+    std::ostringstream msg;
+    msg << context << ": meshing gives triangle " << t << " an area of " << area << " m^2 (it must exceed "
+        << kMinTriangleArea << " m^2): an outline corner too sharp or a strip too thin to mesh";
+    throw InputError(msg.str());
+  }
+}
+
 // Number of segments for every edge (flat index): round(length / target of its
 // panel), at least 1; with conforming seams, all edges joined by stitches
 // (directly or through a chain) share the largest count among them.
@@ -203,6 +223,7 @@ Garment buildGarment(const Pattern& pattern, const MeshingOptions& options, Diag
     std::vector<Eigen::Vector2d> outline = sampleOutline(pattern, p, counts, index, edgePoints[p]);
     for (Eigen::Vector2d& q : outline) q *= toMetres;
     meshes[p] = meshPanel(outline, panelTarget[p], panelContext(pattern, p));
+    checkRestAreas(meshes[p], panelContext(pattern, p));
     // The mesher winds every triangle counter-clockwise in the plane; a clockwise outline marks the panel's
     // other side as its outside, so its triangles turn over with it.
     if (signedArea(outline) < 0.0) meshes[p].triangles.col(1).swap(meshes[p].triangles.col(2));

@@ -22,6 +22,20 @@ namespace {
 using detail::Json;
 using detail::JsonFields;
 
+// nlohmann keeps the last of repeated keys, so a second panel of the same name would replace the first.
+void refuseDuplicateKeys(const std::string& jsonText, const JsonFields& f) {
+  const auto duplicate = json::findDuplicateKey(jsonText);
+  if (!duplicate) return;
+  const std::vector<std::string>& path = duplicate->path;
+  const bool inPanels = path.size() >= 2 && path[0] == "pattern" && path[1] == "panels";
+  if (inPanels && path.size() == 2) f.fail("", "panel '" + duplicate->key + "' defined twice");
+  if (inPanels) {
+    json::DuplicateKey inPanel{{path.begin() + 3, path.end()}, duplicate->key};
+    f.fail("panel '" + path[2] + "'", "key '" + inPanel.dotted() + "' appears twice");
+  }
+  f.fail("", "key '" + duplicate->dotted() + "' appears twice");
+}
+
 struct FileProperties {
   double unitsInMeter = 100.0;
   bool absoluteCurvature = false;
@@ -143,7 +157,8 @@ Panel readPanel(const std::string& name, const Json& pj, const JsonFields& f, co
   panel.translation = f.readVec3(f.member(pj, "translation", where), where, "'translation'");
   panel.rotationDeg = f.readVec3(f.member(pj, "rotation", where), where, "'rotation'");
   if (const auto label = pj.find("label"); label != pj.end()) panel.label = f.readString(*label, where, "'label'");
-  detail::validatePanelOutline(panel, f);
+  detail::validatePanelPlacement(panel, props.unitsInMeter, f);
+  detail::validatePanelOutline(panel, props.unitsInMeter, f);
   return panel;
 }
 
@@ -230,6 +245,7 @@ Pattern parsePattern(const std::string& jsonText, const std::string& source, Dia
   } catch (const Json::exception& e) {
     f.fail("", "invalid JSON: " + json::describeParseFailure(jsonText, e));
   }
+  refuseDuplicateKeys(jsonText, f);
   f.expectObject(root, "", "the top level");
   const Json& patternJson = f.member(root, "pattern", "");
   f.expectObject(patternJson, "", "'pattern'");

@@ -92,7 +92,7 @@ std::optional<OutlineContact> findSelfContact(const std::vector<Eigen::Vector2d>
   return std::nullopt;
 }
 
-void validatePanelOutline(const Panel& panel, const JsonFields& fields) {
+void validatePanelOutline(const Panel& panel, double unitsInMeter, const JsonFields& fields) {
   std::vector<Eigen::Vector2d> outline;
   std::vector<int> edgeOfSegment;
   for (int e = 0; e < int(panel.edges.size()); ++e) {
@@ -117,7 +117,35 @@ void validatePanelOutline(const Panel& panel, const JsonFields& fields) {
   Eigen::AlignedBox2d box;
   for (const auto& p : outline) box.extend(p);
   const double diagonal = box.diagonal().norm();
-  if (std::abs(signedArea(outline)) <= 1e-9 * diagonal * diagonal) fields.fail(where, "outline encloses no area");
+  const double area = std::abs(signedArea(outline));
+  if (area <= 1e-9 * diagonal * diagonal) fields.fail(where, "outline encloses no area");
+
+  // Absolute size, metres: the mesher and the cloth model need triangles far above rounding, and a panel
+  // larger than a room is a unit mistake.
+  const double across = diagonal / unitsInMeter;
+  const double areaM2 = area / (unitsInMeter * unitsInMeter);
+  if (areaM2 < kMinPanelArea)
+    fields.fail(where, "area " + formatNumber(areaM2) + " m^2 is too small to mesh (its outline is " +
+                           formatNumber(across) + " m across; at least " + formatNumber(kMinPanelArea) +
+                           " m^2 is needed)");
+  if (across > kMaxPanelExtent)
+    fields.fail(where,
+                "outline is " + formatNumber(across) + " m across (at most " + formatNumber(kMaxPanelExtent) + " m)");
+}
+
+void validatePanelPlacement(const Panel& panel, double unitsInMeter, const JsonFields& fields) {
+  const std::string where = "panel '" + panel.name + "'";
+  const double distance = panel.translation.stableNorm() / unitsInMeter;  // no overflow at 1e308
+  if (!(distance <= kMaxPanelTranslation))
+    fields.fail(where, "'translation' (" + formatNumber(panel.translation.x()) + ", " +
+                           formatNumber(panel.translation.y()) + ", " + formatNumber(panel.translation.z()) + ") is " +
+                           formatNumber(distance) + " m from the origin (at most " +
+                           formatNumber(kMaxPanelTranslation) + " m)");
+  for (int k = 0; k < 3; ++k)
+    if (!(std::abs(panel.rotationDeg[k]) <= kMaxPanelRotationDeg))
+      fields.fail(where, std::string("'rotation' ") + "xyz"[k] + " = " + formatNumber(panel.rotationDeg[k]) +
+                             " degrees is out of range [-" + formatNumber(kMaxPanelRotationDeg) + ", " +
+                             formatNumber(kMaxPanelRotationDeg) + "]");
 }
 
 void warnStitchLengthMismatch(const Pattern& pattern, Diagnostics& diagnostics) {

@@ -27,8 +27,18 @@ std::optional<OutlineContact> findSelfContact(const std::vector<Eigen::Vector2d>
 // Signed area of a closed polyline (> 0 counter-clockwise), squared file units.
 double signedArea(const std::vector<Eigen::Vector2d>& outline);
 
-// Throws InputError naming the panel and edges when the panel outline crosses itself or encloses no area.
-void validatePanelOutline(const Panel& panel, const JsonFields& fields);
+// Limits of a panel, metres and degrees (docs/FORMATS.md "Limits").
+constexpr double kMinPanelArea = 1e-6;          // 1 mm^2: below, mesh triangles approach rounding error
+constexpr double kMaxPanelExtent = 100.0;       // outline bounding-box diagonal
+constexpr double kMaxPanelTranslation = 100.0;  // |translation| after unit conversion
+constexpr double kMaxPanelRotationDeg = 360.0;  // each Euler angle
+
+// Throws InputError naming the panel and edges when the panel outline crosses itself, encloses no area, or is
+// smaller than kMinPanelArea or larger than kMaxPanelExtent (unitsInMeter: file units per metre).
+void validatePanelOutline(const Panel& panel, double unitsInMeter, const JsonFields& fields);
+
+// Throws InputError naming the panel when its translation or rotation is beyond the limits above.
+void validatePanelPlacement(const Panel& panel, double unitsInMeter, const JsonFields& fields);
 
 // Adds a warning to diagnostics for every stitch whose two edges differ in length by more than 5%.
 void warnStitchLengthMismatch(const Pattern& pattern, Diagnostics& diagnostics);

@@ -66,7 +66,7 @@ const std::vector<std::string>& sceneSettingSections() {
 }
 
 bool isPatternFile(const std::filesystem::path& file) {
-  const nlohmann::json j = json::parseFile(file);
+  const nlohmann::json j = json::parseFile(file, json::DuplicateKeys::Allow);
   return j.is_object() && j.contains("pattern") && j.at("pattern").is_object();
 }
 
@@ -74,9 +74,12 @@ Scene loadScene(const SceneRequest& request) {
   Scene scene;
   scene.file = request.input;
   const std::string where = request.input.string();
-  const nlohmann::json j = json::parseFile(request.input);
+  std::string text;
+  const nlohmann::json j = json::parseFile(request.input, json::DuplicateKeys::Allow, &text);
   if (!j.is_object()) throw InputError(where + ": expected a JSON object (a scene or a pattern)");
   const bool barePattern = j.contains("pattern") && j.at("pattern").is_object();
+  // A repeated key would silently override a setting; a bare pattern gets the pattern loader's own check.
+  if (!barePattern) json::refuseDuplicateKeys(text, where);
   const std::filesystem::path base = request.input.parent_path();
 
   nlohmann::json colliders, pins, panelFabrics;

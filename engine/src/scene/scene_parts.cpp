@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <sstream>
 
 #include "core/json_reader.h"
 #include "drape/core/input_error.h"
@@ -21,6 +22,27 @@ Eigen::Vector3d vec3(const nlohmann::json& j, const std::string& key, const std:
     out[i] = v[i].get<double>();
   }
   return out;
+}
+
+// Collider coordinates and sizes, metres: a scene is a few metres across; larger values are a unit mistake or
+// garbage that would only make the contact search overflow.
+constexpr double kMaxColliderExtent = 100.0;
+
+std::string formatMetres(double x) {
+  std::ostringstream os;
+  os << x;
+  return os.str();
+}
+
+// vec3 with every coordinate within +-kMaxColliderExtent.
+Eigen::Vector3d colliderPoint(const nlohmann::json& j, const std::string& key, const std::string& where) {
+  const Eigen::Vector3d p = vec3(j, key, where);
+  for (int i = 0; i < 3; ++i)
+    if (std::abs(p[i]) > kMaxColliderExtent)
+      throw InputError(where + ": field '" + key + "': " + "xyz"[i] + " = " + formatMetres(p[i]) +
+                       " m is out of range [-" + formatMetres(kMaxColliderExtent) + ", " +
+                       formatMetres(kMaxColliderExtent) + "] m");
+  return p;
 }
 
 void rejectUnknown(const nlohmann::json& j, std::initializer_list<const char*> known, const std::string& where) {
@@ -88,15 +110,18 @@ std::vector<Collider> parseColliders(const nlohmann::json& j, const std::string&
       rejectUnknown(c, {"type", "center", "radius", "subdivisions"}, at);
       const double radius = json::number(c, "radius", at);
       if (radius <= 0) throw InputError(at + ": radius must be positive");
+      if (radius > kMaxColliderExtent)
+        throw InputError(at + ": radius " + formatMetres(radius) + " m is too large (at most " +
+                         formatMetres(kMaxColliderExtent) + " m)");
       int subdivisions = 4;
       if (c.contains("subdivisions")) {
         subdivisions = static_cast<int>(json::number(c, "subdivisions", at));
         if (subdivisions < 0 || subdivisions > 7) throw InputError(at + ": subdivisions must be in [0, 7]");
       }
-      out.push_back({"sphere", makeIcosphere(vec3(c, "center", at), radius, subdivisions)});
+      out.push_back({"sphere", makeIcosphere(colliderPoint(c, "center", at), radius, subdivisions)});
     } else if (type == "box") {
       rejectUnknown(c, {"type", "min", "max"}, at);
-      const Eigen::Vector3d lo = vec3(c, "min", at), hi = vec3(c, "max", at);
+      const Eigen::Vector3d lo = colliderPoint(c, "min", at), hi = colliderPoint(c, "max", at);
       if ((hi.array() <= lo.array()).any()) throw InputError(at + ": box 'max' must exceed 'min' on every axis");
       out.push_back({"box", makeBox(lo, hi)});
     } else {

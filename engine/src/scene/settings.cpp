@@ -73,6 +73,13 @@ std::string canonical(const SettingSpec& spec, const std::string& value, const s
         part.erase(part.find_last_not_of(' ') + 1);
         double v = 0;
         if (!parseNumber(part, v)) fail("'" + value + "' is not " + describe(spec));
+        if (v < spec.min || v > spec.max) {
+          std::ostringstream os;
+          os << "'" << value << "': "
+             << "xyz"[i] << " = " << part << " is out of range [" << spec.min << ", " << spec.max << "]"
+             << (spec.unit.empty() ? "" : " " + spec.unit);
+          fail(os.str());
+        }
         canon += (i ? "," : "") + part;
         start = comma + 1;
       }

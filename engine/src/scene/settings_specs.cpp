@@ -28,7 +28,7 @@ const std::vector<SettingSpec>& Settings::specs() {
        "false: each edge at its own spacing, seams sewn vertex to edge point (non-conforming)"},
       {"sim.gravity", T::Number, "-9.81", "m/s^2", "gravity along y", -1000, 1000},
       {"placement.translate", T::Vector3, "0,0,0", "m", "moves the placed garment, every panel, by this vector: for "
-       "a pattern laid out around another body's origin"},
+       "a pattern laid out around another body's origin", -100, 100},
       {"placement.fit", T::Boolean, "true", "", "fits a pattern laid out around another body to the avatar: panel "
        "groups (torso, sleeves, skirt) moved rigidly onto the avatar's landmarks, then panels inside the body moved out "
        "(docs/FORMATS.md)"},

@@ -20,7 +20,7 @@ struct SettingSpec {
   std::string defaultValue;  // textual; empty for an optional setting that is unset by default
   std::string unit;          // "m", "N/m", "" ...
   std::string description;
-  double min = -1e300;       // Number/Integer bounds (inclusive)
+  double min = -1e300;       // Number/Integer bounds, and of each Vector3 component (inclusive)
   double max = 1e300;
   std::vector<std::string> choices;  // Choice only
 };
