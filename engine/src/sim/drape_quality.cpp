@@ -80,45 +80,31 @@ void colliderChecks(const Garment& garment, const Eigen::MatrixX3d& x, const col
   const double count = std::max(1, n);
   const std::string place = deepest < 0 ? std::string("no vertices") : vertexPlace(garment, x, deepest);
 
-  QualityCheck in;
-  in.name = "inside_fraction";
-  in.value = inside / count;
-  in.threshold = s.maxInsideFraction;
-  in.passed = in.value <= in.threshold;
-  in.vertex = deepest;
-  in.where = place;
-  in.message = format(
-                   "inside_fraction: %.2f %% of the garment vertices inside a collider (threshold %.2f %%); "
-                   "deepest: ",
-                   100.0 * in.value, 100.0 * in.threshold) +
-               place;
-  checks.push_back(in);
-
-  QualityCheck depth;
-  depth.name = "penetration_depth";
-  depth.value = deepest < 0 ? 0.0 : std::max(0.0, -distance[deepest]);
-  depth.threshold = s.maxPenetrationDepth > 0.0 ? s.maxPenetrationDepth : thickness;
-  depth.passed = !(depth.value > depth.threshold);
-  depth.vertex = deepest;
-  depth.where = place;
-  depth.message = format("penetration_depth: a vertex %.1f mm inside a collider (threshold %.1f mm), ",
-                         1e3 * depth.value, 1e3 * depth.threshold) +
-                  place;
-  checks.push_back(depth);
-
-  QualityCheck skin;
-  skin.name = "near_skin_fraction";
-  skin.value = near / count;
-  skin.threshold = s.maxNearSkinFraction;
-  skin.passed = skin.value <= skin.threshold;
-  skin.vertex = deepest;
-  skin.where = place;
-  skin.message = format(
-                     "near_skin_fraction: %.2f %% of the garment vertices within %.1f mm of a collider or inside "
-                     "(threshold %.2f %%); deepest: ",
-                     100.0 * skin.value, 1e3 * s.nearSkinDistance, 100.0 * skin.threshold) +
-                 place;
-  checks.push_back(skin);
+  // A check that passes while its value stays at or below its threshold, worst at `deepest`.
+  const auto atMost = [&](const char* name, double value, double threshold, const std::string& message) {
+    QualityCheck c;
+    c.name = name;
+    c.value = value;
+    c.threshold = threshold;
+    c.passed = !(value > threshold);
+    c.vertex = deepest;
+    c.where = place;
+    c.message = message + place;
+    checks.push_back(c);
+  };
+  const double fractionInside = inside / count, nearFraction = near / count;
+  atMost("inside_fraction", fractionInside, s.maxInsideFraction,
+         format("inside_fraction: %.2f %% of the garment vertices inside a collider (threshold %.2f %%); deepest: ",
+                100.0 * fractionInside, 100.0 * s.maxInsideFraction));
+  const double depth = deepest < 0 ? 0.0 : std::max(0.0, -distance[deepest]);
+  const double depthThreshold = s.maxPenetrationDepth > 0.0 ? s.maxPenetrationDepth : thickness;
+  atMost("penetration_depth", depth, depthThreshold,
+         format("penetration_depth: a vertex %.1f mm inside a collider (threshold %.1f mm), ", 1e3 * depth,
+                1e3 * depthThreshold));
+  atMost("near_skin_fraction", nearFraction, s.maxNearSkinFraction,
+         format("near_skin_fraction: %.2f %% of the garment vertices within %.1f mm of a collider or inside "
+                "(threshold %.2f %%); deepest: ",
+                100.0 * nearFraction, 1e3 * s.nearSkinDistance, 100.0 * s.maxNearSkinFraction));
 }
 
 // Faces whose centroid lies within this distance of a collider count for outward_faces, metres: the cloth on the
