@@ -1,4 +1,5 @@
 // drape --simulate SCENE -o OUT: build the garment, run the chosen solver stage, write the result and statistics.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -20,12 +21,20 @@ namespace drape::app {
 namespace {
 
 nlohmann::json stepRecord(const StepReport& r) {
-  nlohmann::json j = {{"stage", r.stage}, {"time", r.time},         {"h", r.h},
-          {"status", toString(r.status)}, {"iterations", r.iterations},
-          {"cg_iterations", r.cgIterations}, {"splits", r.splits},
-          {"residual", r.residual}, {"kinetic_energy_p99", r.kineticEnergy},
-          {"contacts", r.contacts}, {"feature_contacts", r.featureContacts}, {"max_strain", r.maxStrain},
-          {"max_strain_triangle", r.maxStrainTriangle}, {"wall_time_s", r.wallTime}};
+  nlohmann::json j = {{"stage", r.stage},
+                      {"time", r.time},
+                      {"h", r.h},
+                      {"status", toString(r.status)},
+                      {"iterations", r.iterations},
+                      {"cg_iterations", r.cgIterations},
+                      {"splits", r.splits},
+                      {"residual", r.residual},
+                      {"kinetic_energy_p99", r.kineticEnergy},
+                      {"contacts", r.contacts},
+                      {"feature_contacts", r.featureContacts},
+                      {"max_strain", r.maxStrain},
+                      {"max_strain_triangle", r.maxStrainTriangle},
+                      {"wall_time_s", r.wallTime}};
   if (r.stage == "preview") {
     j["domains"] = r.domains;
     j["sewn"] = r.sewn;
@@ -100,8 +109,9 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
     std::string lastStage = simulation.stage();
     std::string lastFailure;  // simulation.previewFailure() as last printed
     int restartsSaid = 0;     // simulation.previewRestartReasons() printed
-    std::string status;  // Diverged or Cancelled from a step, else why the run finished
-    double nextPrint = 0.0;
+    std::string status;       // Diverged or Cancelled from a step, else why the run finished
+    double nextPrint = 0.0, nextWallPrint = 5.0;
+    const double maxSimTime = simulation.scene().settings.number("solver.max_sim_time");
     StepReport last;
     while (!simulation.finished()) {
       last = simulation.step();
@@ -126,22 +136,39 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
         status = toString(last.status);
         break;
       }
-      if (!torn && last.time >= nextPrint) {
-        char line[200];
-        std::snprintf(line, sizeof line, "  %s t=%.3f s  h=%.2e  iterations=%d  cg=%d  residual=%.2e  KE=%.2e  contacts=%d\n",
-                      last.stage.c_str(), last.time, last.h, last.iterations, last.cgIterations, last.residual,
-                      last.kineticEnergy, last.contacts);
+      // A progress line every 0.1 s simulated, and at least every 5 s of wall time, so that a slow drape (a stiff
+      // fabric, a fine mesh) is never silent: wall time so far and, from the rate so far, at most how long the rest
+      // of solver.max_sim_time takes (the early stop may come sooner).
+      const double wall = secondsSince(start);
+      if (!torn && (last.time >= nextPrint || wall >= nextWallPrint)) {
+        char estimate[64] = "";
+        if (last.time >= 0.05 * maxSimTime)  // the first steps' rate says little about the rest
+          std::snprintf(estimate, sizeof estimate, "  left<=%.0f s",
+                        wall / last.time * std::max(0.0, maxSimTime - last.time));
+        char line[240];
+        std::snprintf(
+            line, sizeof line,
+            "  %s t=%.3f s  h=%.2e  iterations=%d  cg=%d  residual=%.2e  KE=%.2e  contacts=%d  wall=%.1f s%s\n",
+            last.stage.c_str(), last.time, last.h, last.iterations, last.cgIterations, last.residual,
+            last.kineticEnergy, last.contacts, wall, estimate);
         out << line << std::flush;
         nextPrint = last.time + 0.1;
+        nextWallPrint = wall + 5.0;
       }
     }
     if (status.empty()) status = simulation.endReason();
     exportGarment(simulation.garment(), simulation.positions(), options.output);
     if (!options.png.empty()) renderToPng(simulation.snapshot(), options, camera, options.png, out);
-    stats = {{"status", status}, {"steps", simulation.steps()}, {"sim_time_s", simulation.time()}, {"terms", terms},
-             {"per_step", perStep}, {"vertices", simulation.garment().vertexCount()},
-             {"triangles", simulation.garment().triangleCount()}, {"pinned_vertices", simulation.pinned().size()},
-             {"final", stepRecord(last)}, {"domains", domains}};
+    stats = {{"status", status},
+             {"steps", simulation.steps()},
+             {"sim_time_s", simulation.time()},
+             {"terms", terms},
+             {"per_step", perStep},
+             {"vertices", simulation.garment().vertexCount()},
+             {"triangles", simulation.garment().triangleCount()},
+             {"pinned_vertices", simulation.pinned().size()},
+             {"final", stepRecord(last)},
+             {"domains", domains}};
     if (!simulation.previewFailure().empty()) stats["preview_failure"] = simulation.previewFailure();
     stats["preview_recovered"] = simulation.previewRecoveries();
     stats["preview_restarts"] = simulation.previewRestarts();

@@ -4,6 +4,7 @@
 #include <array>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 
 #include "drape/render/png_io.h"
 #include "run_process.h"
@@ -18,7 +19,9 @@ ProcessResult drape(const std::string& args) {
   return runProcess(quote(DRAPE_EXECUTABLE) + " " + args + " </dev/null", kScratch);
 }
 
-std::string asset(const std::string& relative) { return quote((assetsDir() / relative).string()); }
+std::string asset(const std::string& relative) {
+  return quote((assetsDir() / relative).string());
+}
 
 TEST(CliSimulate, DrapeWritesGarmentAndPerStepStats) {
   const auto obj = kScratch / "hang.obj", stats = kScratch / "hang.json";
@@ -105,14 +108,35 @@ TEST(CliSimulate, StepLimitIsReportedAsSuch) {
   EXPECT_LT(j.at("sim_time_s").get<double>(), 0.01);  // far from the scene's time limit
 }
 
+// Progress lines: one every 0.1 s simulated, with the wall time so far, and once 5 % of solver.max_sim_time has
+// passed, at most how long the rest takes at the rate so far.
+TEST(CliSimulate, ProgressLinesSayTheWallTimeAndWhatIsLeft) {
+  auto r =
+      drape("--simulate " + asset("scenes/hanging_cloth.json") + " --set mesh.target_edge_length=0.1" +
+            " --max-sim-time 0.25 --set quality.require_rest=false -o " + quote((kScratch / "progress.obj").string()));
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  int lines = 0, estimates = 0;
+  std::istringstream text(r.out);
+  for (std::string line; std::getline(text, line);) {
+    if (line.rfind("  drape t=", 0) != 0) continue;
+    ++lines;
+    EXPECT_NE(line.find(" wall="), std::string::npos) << line;
+    const double t = std::stod(line.substr(line.find("t=") + 2));
+    const bool estimated = line.find("left<=") != std::string::npos;
+    EXPECT_EQ(estimated, t >= 0.05 * 0.25) << line;
+    estimates += estimated;
+  }
+  EXPECT_GE(lines, 3) << r.out;  // t = 0, 0.1, 0.2
+  EXPECT_GE(estimates, 2) << r.out;
+}
+
 TEST(CliSimulate, ColliderSceneUsesContactAndFriction) {
   const auto stats = kScratch / "tablecloth.json";
   // The cloth starts 0.2 m above the sphere: after 0.4 s it lies on it (not at rest yet: the rest requirement of
   // the quality verdict is off).
   auto r = drape("--simulate " + asset("scenes/tablecloth.json") +
                  " --set mesh.target_edge_length=0.1 --set quality.require_rest=false --max-sim-time 0.4 -o " +
-                 quote((kScratch / "tc.obj").string()) + " --stats " +
-                 quote(stats.string()));
+                 quote((kScratch / "tc.obj").string()) + " --stats " + quote(stats.string()));
   ASSERT_TRUE(r.exitCode == 0 || r.exitCode == 4) << r.err;
   const auto report = nlohmann::json::parse(readWhole(stats));
   // The coarse cloth is still landing on the sphere: whether its verdict passes (a few vertices may be inside) is
@@ -136,8 +160,7 @@ TEST(CliSimulate, FullPipelineRunsThePreviewThenTheDrape) {
   const auto stats = kScratch / "full.json";
   auto r = drape("--simulate " + asset("scenes/tablecloth.json") + " --solver full --set mesh.target_edge_length=0.1" +
                  " --set solver.preview.max_time=0.05 --set quality.require_rest=false --max-sim-time 0.06 -o " +
-                 quote((kScratch / "full.obj").string()) +
-                 " --stats " + quote(stats.string()));
+                 quote((kScratch / "full.obj").string()) + " --stats " + quote(stats.string()));
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   const auto j = nlohmann::json::parse(readWhole(stats));
   bool sawPreview = false, sawDrape = false;
@@ -162,9 +185,8 @@ TEST(CliSimulate, TornPreviewIsReportedAndTheDrapeStartsFromThePlacedGarment) {
   // in its first step, and is given up.
   const auto stats = kScratch / "torn.json";
   auto r = drape("--simulate " + asset("scenes/default.json") + " --solver full --set solver.preview.failure_strain=2" +
-                 " --set solver.preview.relaxation_time=0" +
-                 " --max-sim-time 0.002 -o " + quote((kScratch / "torn.obj").string()) + " --stats " +
-                 quote(stats.string()));
+                 " --set solver.preview.relaxation_time=0" + " --max-sim-time 0.002 -o " +
+                 quote((kScratch / "torn.obj").string()) + " --stats " + quote(stats.string()));
   // 2 ms of a drape from the placed garment: not at rest, and the quality verdict fails (exit 4).
   ASSERT_EQ(r.exitCode, 4) << r.err << r.out;
   const size_t freed = r.out.find("contact targets not held before it is sewn");
@@ -257,10 +279,10 @@ TEST(CliSimulate, PreviewThatRecoversAfterStartingOverIsNoFailure) {
 
 TEST(CliSimulate, TornPreviewAloneIsReportedAndGoesOn) {
   const auto stats = kScratch / "torn_alone.json";
-  auto r = drape("--simulate " + asset("scenes/default.json") + " --solver preview --set solver.preview.failure_strain=2" +
-                 " --set solver.preview.relaxation_time=0" +
-                 " --max-sim-time 0.004 -o " + quote((kScratch / "torn_alone.obj").string()) + " --stats " +
-                 quote(stats.string()));
+  auto r =
+      drape("--simulate " + asset("scenes/default.json") + " --solver preview --set solver.preview.failure_strain=2" +
+            " --set solver.preview.relaxation_time=0" + " --max-sim-time 0.004 -o " +
+            quote((kScratch / "torn_alone.obj").string()) + " --stats " + quote(stats.string()));
   // A torn preview cut short at 4 ms: its quality verdict fails (exit 4).
   ASSERT_EQ(r.exitCode, 4) << r.err << r.out;
   EXPECT_FALSE(nlohmann::json::parse(readWhole(stats)).at("quality").at("passed").get<bool>());
@@ -301,7 +323,8 @@ TEST(CliRender, ViewAllWritesAContactSheet) {
 TEST(CliRender, BodyMeshRendersOnItsOwn) {
   const auto png = kScratch / "body.png";
   std::filesystem::remove(png);
-  auto r = drape("--render " + asset("avatars/female.obj") + " -o " + quote(png.string()) + " --size 90x160 --view front");
+  auto r =
+      drape("--render " + asset("avatars/female.obj") + " -o " + quote(png.string()) + " --size 90x160 --view front");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const render::Image image = render::readPng(png);
   ASSERT_EQ(image.width, 90);
@@ -358,7 +381,8 @@ TEST(CliBench, FailsWhenTheReferenceDoesNotFinishItsDrape) {
   const auto report = kScratch / "bench_unfinished.json";
   auto r = drape("--bench " + asset("scenes/hanging_cloth.json") +
                  " --set mesh.target_edge_length=0.2 --set solver.max_steps=3 --max-sim-time 0.01"
-                 " --sweep solver.cg.tolerance=1e-1 -o " + quote(report.string()));
+                 " --sweep solver.cg.tolerance=1e-1 -o " +
+                 quote(report.string()));
   EXPECT_EQ(r.exitCode, 1) << r.err << r.out;
   EXPECT_NE(r.out.find("reference drape ended MaxSteps"), std::string::npos) << r.out;
   const auto j = nlohmann::json::parse(readWhole(report));
@@ -402,8 +426,7 @@ TEST(CliRender, ExplicitCameraFromSettingsChangesTheView) {
   const render::Image ia = render::readPng(preset), ib = render::readPng(explicitCam);
   ASSERT_EQ(ia.pixels.size(), ib.pixels.size());
   size_t differing = 0;
-  for (size_t i = 0; i < ia.pixels.size(); i += 4)
-    differing += std::abs(int(ia.pixels[i]) - int(ib.pixels[i])) > 8;
+  for (size_t i = 0; i < ia.pixels.size(); i += 4) differing += std::abs(int(ia.pixels[i]) - int(ib.pixels[i])) > 8;
   EXPECT_GT(differing, ia.pixels.size() / 4 / 10);  // a top-down view differs from the three-quarter preset
   auto bad = drape("--render " + asset("scenes/tablecloth.json") + " -o " + quote(explicitCam.string()) +
                    " --size 32x32 --set camera.eye=0,1,0 --set camera.target=0,1,0");
