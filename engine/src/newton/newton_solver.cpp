@@ -128,6 +128,17 @@ void NewtonSolver::setDrag(int vertex, const Eigen::Vector3d& target) {
     m_drag->setPins({vertex}, {target});
 }
 
+void NewtonSolver::setQuasiNewton(std::shared_ptr<StepPreconditioner> preconditioner, QuasiNewtonSettings settings) {
+  m_quasiNewton = std::move(preconditioner);
+  m_qnSettings = settings;
+  // The Newton matrix and the last step's Newton data do not carry across the switch.
+  m_matrixReady = false;
+  m_elasticHessianH = 0.0;
+  m_pcgCache.valid = false;
+  m_coarseStale = true;
+  m_coupledStale = true;
+}
+
 std::vector<std::string> NewtonSolver::energyNames() const {
   std::vector<std::string> names;
   for (const auto& e : m_energies) names.emplace_back(e->name());
@@ -228,6 +239,7 @@ bool NewtonSolver::hasFreshTerms() const {
 
 NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, Eigen::VectorXd& v,
                                    NewtonStepReport& report) {
+  if (m_quasiNewton) return attemptQuasiNewton(h, scale, x, v, report);
   StepContext ctx{&m_x, &m_v, h, m_time, scale, assemblyOptions()};
   for (auto& e : m_energies) e->beginStep(ctx);
   // A relaxation step (zero v_n) may start from the last step's motion (NewtonSettings::relaxationGuess).
@@ -362,10 +374,12 @@ NewtonStepReport NewtonSolver::step() {
   // A relaxation step ends with zero velocities, so the next one starts where this one's last gradient pass ran
   // (unless the relaxation guess starts it elsewhere).
   for (size_t k = 0; k < m_elasticCount; ++k)
-    m_energies[k]->setRecordStepStartGradient(relaxing && s.stepStartGradients && !s.relaxationGuess);
+    m_energies[k]->setRecordStepStartGradient(relaxing && s.stepStartGradients && !s.relaxationGuess &&
+                                              !m_quasiNewton);
   m_nearRest = s.restAwareConvergence && !relaxing &&
                kineticEnergyPercentile() < s.restAwareFactor * s.earlyStopThreshold;
   Eigen::VectorXd x, v;
+  NewtonStatus keptStatus = NewtonStatus::Converged;
   while (true) {
     if (m_cancel.load()) {
       report.status = NewtonStatus::Cancelled;
@@ -376,7 +390,12 @@ NewtonStepReport NewtonSolver::step() {
       report.status = st;
       return report;  // state untouched: the step restarts from the last good state
     }
-    if (st == NewtonStatus::Converged && x.allFinite() && v.allFinite()) break;
+    // The quasi-Newton preview keeps a step its iterations left above tau_n.
+    const bool kept = st == NewtonStatus::Converged || (m_quasiNewton && st == NewtonStatus::MaxIterations);
+    if (kept && x.allFinite() && v.allFinite()) {
+      keptStatus = st;
+      break;
+    }
     // Time splitting (3.1.3): restore (state was never overwritten) and retry with a smaller step.
     m_goodSteps = 0;
     ++report.splits;
@@ -399,7 +418,7 @@ NewtonStepReport NewtonSolver::step() {
   report.h = m_h;
   m_time += m_h;
   report.time = m_time;
-  report.status = NewtonStatus::Converged;
+  report.status = keptStatus;
   if (++m_goodSteps >= s.growAfterSteps && m_h < hCap) {
     m_h = std::min(hCap, m_h / s.omega);
     m_goodSteps = 0;

@@ -40,6 +40,14 @@ const std::vector<SettingSpec>& Settings::specs() {
        1e4},
       {"solver.max_steps", T::Integer, "100000", "", "step limit", 1, 1e9},
       // PD-DD preview (pd-dd-lu2025; defaults from the paper unless a description says otherwise)
+      {"solver.preview.method", T::Choice, "projective", "", "what the preview solves: projective (pd-dd's constraint "
+       "model; the other solver.preview settings) or quasi_newton (the drape's own model and rest states, by L-BFGS "
+       "whose initial Hessian is the PD-DD system; qn_* settings; docs/BENCHMARKS.md, \"A preview on the drape's "
+       "model\")", -1e300, 1e300, {"projective", "quasi_newton"}},
+      {"solver.preview.qn_time_step", T::Number, "0.008333333333333333", "s", "quasi-Newton preview: time step", 1e-5,
+       0.1},
+      {"solver.preview.qn_iterations", T::Integer, "8", "", "quasi-Newton preview: L-BFGS iterations per step", 1,
+       1000},
       {"solver.preview.time_step", T::Number, "0.0020833333333333333", "s",
        "preview time step h (the paper: 1/120 s; 1/480 s keeps stiff, light garments on the body, docs/ENGINE.md)", 1e-5,
        0.1},

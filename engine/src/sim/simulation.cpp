@@ -19,6 +19,7 @@
 #include "drape/sim/snapshot_builder.h"
 #include "sim/cloth_model_builder.h"
 #include "sim/contact_terms.h"
+#include "sim/simulation_solver.h"
 
 namespace drape {
 
@@ -31,27 +32,6 @@ const char* toString(StepStatus status) {
   }
   return "?";
 }
-
-struct Simulation::Solver {
-  newton::ClothModel model;
-  std::shared_ptr<const collision::AvatarCollider> collider;
-  std::unique_ptr<pd::PreviewSolver> preview;  // while the stage is "preview"
-  std::unique_ptr<newton::NewtonSolver> newton;  // once the stage is "drape"
-  ContactTerms contact;                          // the drape's contact terms (energies moved into newton)
-  Eigen::VectorXd masses;                        // |V| lumped, kg
-  double previewOffset = 0.0;                    // scene time at the preview solver's time 0, s
-  double previewTime = 0.0;                      // scene time at which the drape started, s
-  Eigen::MatrixX3d previewPositions;             // the state the drape started from; no rows = placed garment
-  // solver.preview.assembly_edge_length: the preview sewing a coarser meshing of the same pattern, before
-  // `preview` takes over on the garment's own mesh. Its state reaches the garment through toGarment.
-  struct Assembly {
-    Garment garment;
-    std::unique_ptr<pd::PreviewSolver> preview;
-    Eigen::SparseMatrix<double, Eigen::RowMajor> toGarment;  // |V| x |V_assembly|
-    Eigen::VectorXd masses;                                  // |V_assembly| lumped, kg
-  };
-  std::unique_ptr<Assembly> assembly;
-};
 
 namespace {
 
@@ -138,7 +118,9 @@ void Simulation::build(const ResumeState* from) {
   if (from && from->vertexCount != m_garment.vertexCount()) from = nullptr;  // re-meshed: start over
   if (from && from->assembling) from = nullptr;  // not sewn yet: the assembly starts over
   m_resumed = from != nullptr;
-  if (from && from->stage == "preview" && runsPreview) {
+  if (runsPreview && quasiNewtonMethod() && (!from || from->stage == "preview")) {
+    startQuasiNewtonPreview(from);
+  } else if (from && from->stage == "preview" && runsPreview) {
     newton::ClothModel model = m_solver->model;
     for (int v = 0; v < m_garment.vertexCount(); ++v) {
       model.positions.segment<3>(3 * v) = from->positions.row(v).transpose();
@@ -186,6 +168,8 @@ void Simulation::startPreview() {
   m_solver->preview.reset();
   // A tear found in the step that handed over has already started the drape: starting over drops it.
   m_solver->newton.reset();
+  m_solver->quasiNewtonPreview = false;
+  m_solver->preconditioner.reset();
   m_solver->previewPositions.resize(0, 3);
   m_solver->previewTime = 0.0;
   m_atRest = false;
@@ -270,6 +254,9 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
   m_solver->preview.reset();
   m_solver->previewPositions = positions;
   m_solver->previewTime = time;
+  m_solver->newtonOffset = time;
+  m_solver->quasiNewtonPreview = false;
+  m_solver->preconditioner.reset();
   if (positions.rows() > 0) {  // warm start from the preview; velocities reset
     for (int v = 0; v < m_garment.vertexCount(); ++v) model.positions.segment<3>(3 * v) = positions.row(v).transpose();
   }
@@ -466,7 +453,9 @@ ResumeState Simulation::resumeState() const {
   return r;
 }
 
-std::string Simulation::stage() const { return m_solver->newton ? "drape" : "preview"; }
+std::string Simulation::stage() const {
+  return m_solver->newton && !m_solver->quasiNewtonPreview ? "drape" : "preview";
+}
 
 bool Simulation::assembling() const { return m_solver->assembly != nullptr; }
 
@@ -489,7 +478,7 @@ const collision::AvatarCollider* Simulation::collider() const { return m_solver-
 double Simulation::time() const {
   if (m_solver->assembly) return m_solver->assembly->preview->time();
   return m_solver->preview ? m_solver->previewOffset + m_solver->preview->time()
-                           : m_solver->previewTime + m_solver->newton->time();
+                           : m_solver->newtonOffset + m_solver->newton->time();
 }
 
 Eigen::MatrixX3d Simulation::positions() const {
@@ -509,12 +498,26 @@ void Simulation::clearCancel() {
   if (m_solver->newton) m_solver->newton->clearCancel();
 }
 
+bool Simulation::previewSettled(std::vector<double> speeds, bool waiting) {
+  // Settled: vertex speeds below the threshold for a 0.1 s window (as the drape's early stop). A preview that hands
+  // over to the drape uses the looser hand-off speed: the drape settles the rest.
+  const bool previewOnly = m_scene.settings.text("solver.stage") == "preview";
+  const double restSpeed = m_scene.settings.number(previewOnly ? "solver.preview.rest_speed"
+                                                               : "solver.preview.handoff_speed");
+  if (!waiting && percentile(std::move(speeds), 0.99) < restSpeed && m_dragVertex < 0) {
+    if (m_restSince < 0) m_restSince = time();
+  } else {
+    m_restSince = -1.0;
+  }
+  return m_restSince >= 0 && time() - m_restSince >= 0.1;
+}
+
 bool Simulation::finished() const { return !endReason().empty(); }
 
 std::string Simulation::endReason() const {
   const bool previewOnly = m_scene.settings.text("solver.stage") == "preview";
   // A preview that hands over to the drape is never at rest itself: the drape follows.
-  if (m_atRest && (m_solver->newton || previewOnly)) return "AtRest";
+  if (m_atRest && (stage() == "drape" || previewOnly)) return "AtRest";
   if (time() >= m_scene.settings.number("solver.max_sim_time") - 1e-12) return "MaxSimTime";
   if (m_steps >= m_scene.settings.integer("solver.max_steps")) return "MaxSteps";
   return "";
@@ -523,7 +526,10 @@ std::string Simulation::endReason() const {
 StepReport Simulation::step() {
   const auto start = std::chrono::steady_clock::now();
   StepReport report;
-  if (m_solver->preview || m_solver->assembly) {
+  const bool projective = !m_solver->newton;  // the constraint-based preview (or its assembly) takes this step
+  if (m_solver->quasiNewtonPreview) {
+    report = stepQuasiNewtonPreview();
+  } else if (m_solver->preview || m_solver->assembly) {
     const bool assembling = m_solver->assembly != nullptr;
     pd::PreviewSolver& preview = assembling ? *m_solver->assembly->preview : *m_solver->preview;
     const Eigen::VectorXd& masses = assembling ? m_solver->assembly->masses : m_solver->masses;
@@ -553,20 +559,10 @@ StepReport Simulation::step() {
       energies[i] = 0.5 * masses[i] * speeds[i] * speeds[i];
     }
     report.kineticEnergy = percentile(std::move(energies), 0.99);
-    // Settled: vertex speeds below the threshold for a 0.1 s window (as the drape's early stop). A preview that
-    // hands over to the drape uses the looser hand-off speed: the drape settles the rest, and the preview's lagged
-    // contact and friction keep a creep that the drape does not have.
-    const bool previewOnly = m_scene.settings.text("solver.stage") == "preview";
-    const double restSpeed = m_scene.settings.number(previewOnly ? "solver.preview.rest_speed"
-                                                                 : "solver.preview.handoff_speed");
     // A relaxing preview moves at most g h per step whatever its forces: its rest window opens after the relaxation.
     const bool relaxing = time() < m_scene.settings.number("solver.preview.relaxation_time") - 1e-12;
-    if (!assembling && !relaxing && percentile(std::move(speeds), 0.99) < restSpeed && m_dragVertex < 0) {
-      if (m_restSince < 0) m_restSince = time();
-    } else {
-      m_restSince = -1.0;
-    }
-    const bool settled = m_restSince >= 0 && time() - m_restSince >= 0.1;
+    const bool settled = previewSettled(std::move(speeds), assembling || relaxing);
+    const bool previewOnly = m_scene.settings.text("solver.stage") == "preview";
     // The coarse assembly has max_time from the start; the garment's own mesh has it again from where it took over
     // (or from a resumed state): it has its own settling to do.
     const double previewStart = assembling ? 0.0 : m_solver->previewOffset;
@@ -588,7 +584,7 @@ StepReport Simulation::step() {
     m_atRest = r.atRest;
     report.status = toStepStatus(r.status);
     report.stage = "drape";
-    report.time = m_solver->previewTime + r.time;
+    report.time = m_solver->newtonOffset + r.time;
     report.h = r.h;
     report.iterations = r.newtonIterations;
     report.cgIterations = r.cgIterations;
@@ -609,13 +605,17 @@ StepReport Simulation::step() {
   const Eigen::MatrixX3d x = positions();
   const Eigen::VectorXd stretch = triangleStretch(m_garment.rest, x, m_garment.triangles);
   report.maxStrain = stretch.size() ? stretch.maxCoeff(&report.maxStrainTriangle) : 0.0;
-  if (report.stage == "preview") failPreviewIfTorn(report, x);
+  if (report.stage == "preview" && projective) failPreviewIfTorn(report, x);
   report.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }
 
 Snapshot Simulation::snapshot() const {
   Snapshot s = makeSnapshot(m_scene, m_garment, positions());
+  if (m_solver->quasiNewtonPreview) {
+    const auto& domains = m_solver->preconditioner->triangleDomain();
+    s.triangleDomain = Eigen::Map<const Eigen::VectorXi>(domains.data(), static_cast<Eigen::Index>(domains.size()));
+  }
   if (!m_solver->newton) {
     if (m_solver->preview) {  // the coarse assembly's domains do not colour the garment's triangles
       const auto& domains = m_solver->preview->triangleDomain();

@@ -11,6 +11,7 @@
 #include "drape/newton/cloth_model.h"
 #include "drape/newton/energy.h"
 #include "drape/newton/linear_solve.h"
+#include "drape/newton/step_preconditioner.h"
 
 namespace drape::newton {
 
@@ -108,6 +109,17 @@ struct NewtonSettings {
   int coupledFromIterations = 60;
 };
 
+// The quasi-Newton inner solve of a step (the preview; quasi_newton_step.cpp): L-BFGS on the same incremental
+// potential as Newton's, its initial Hessian a StepPreconditioner (Liu, Bouaziz and Kavan 2017), with a backtracking
+// Armijo line search. A step ends once the momentum residual is below tau_n or after maxIterations iterations, where
+// it is kept as it is (the preview solves inexactly).
+struct QuasiNewtonSettings {
+  int maxIterations = 8;            // L-BFGS iterations per step
+  int history = 8;                  // curvature pairs kept (m)
+  int maxLineSearchIterations = 10;  // halvings of the step length
+  double armijo = 1e-4;             // sufficient decrease, c1
+};
+
 class PinSprings;
 class CoarseSpace;
 class CoupledGroups;
@@ -138,6 +150,8 @@ struct NewtonStepReport {
   int coarseSolves = 0;        // linear solves with the two-level preconditioner (coarseAggregate)
   int coarseFactorizations = 0;  // coarse matrices factorised for them (coarseLagged)
   int coupledSolves = 0;       // linear solves with coupled groups (coupledThreshold)
+  bool quasiNewton = false;    // solved by L-BFGS (setQuasiNewton): newtonIterations counts its iterations
+  int lineSearchEvaluations = 0;  // potential evaluations of the line searches (quasi-Newton)
 };
 
 class NewtonSolver {
@@ -155,6 +169,11 @@ class NewtonSolver {
   // A spring of settings.pinStiffness pulling vertex towards target, metres (a grabbed vertex following the
   // cursor); vertex < 0 releases it. The "drag" energy exists from the first call on.
   void setDrag(int vertex, const Eigen::Vector3d& target);
+  // From the next step on, solves every step by L-BFGS with `preconditioner` as its initial Hessian instead of by
+  // Newton and PCG (the preview on the drape's own model); null: Newton. A step that the quasi-Newton solve leaves
+  // above tau_n after its iterations is kept (MaxIterations is not a failure there).
+  void setQuasiNewton(std::shared_ptr<StepPreconditioner> preconditioner, QuasiNewtonSettings settings = {});
+  bool quasiNewton() const { return m_quasiNewton != nullptr; }
 
   const Eigen::VectorXd& positions() const { return m_x; }   // 3|V|, metres
   const Eigen::VectorXd& velocities() const { return m_v; }  // 3|V|, m/s
@@ -179,6 +198,12 @@ class NewtonSolver {
  private:
   // Attempts one step of size h from the current state. Fills x, v and the report's counters.
   NewtonStatus attempt(double h, double scale, Eigen::VectorXd& x, Eigen::VectorXd& v, NewtonStepReport& report);
+  // The same by L-BFGS (setQuasiNewton; quasi_newton_step.cpp).
+  NewtonStatus attemptQuasiNewton(double h, double scale, Eigen::VectorXd& x, Eigen::VectorXd& v,
+                                  NewtonStepReport& report);
+  // Per vertex (|V|, N/m): the largest eigenvalue of the diagonal Hessian block at x of the terms assembled afresh
+  // in every iteration (contact, friction, the drag spring); 0 where they add none. Overwrites m_matrix.
+  void freshVertexStiffness(const Eigen::VectorXd& x, Eigen::VectorXd& k);
   // b = M (v_n - v) - h dE/dx(x) (eq. 4); momentumResidual takes the gradient g = dE/dx already summed.
   void residual(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double h, Eigen::VectorXd& b) const;
   void momentumResidual(const Eigen::VectorXd& g, const Eigen::VectorXd& v, double h, Eigen::VectorXd& b) const;
@@ -239,6 +264,8 @@ class NewtonSolver {
   bool m_coupledStale = true;
   bool m_useCoupled = false;
   std::atomic<bool> m_cancel{false};
+  std::shared_ptr<StepPreconditioner> m_quasiNewton;  // setQuasiNewton
+  QuasiNewtonSettings m_qnSettings;
 };
 
 }  // namespace drape::newton

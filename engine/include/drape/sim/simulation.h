@@ -60,6 +60,10 @@ struct StepReport {
   int coarseFactorizations = 0;  // drape: coarse matrices factorised for them (solver.cg.coarse_lagged)
   int coupledSolves = 0;       // drape: linear solves with coupled groups (solver.cg.coupled_groups)
   bool atRest = false;         // early stop reached
+  // preview, solver.preview.method quasi_newton: the step solved the drape's model by L-BFGS (iterations counts its
+  // iterations, lineSearchEvaluations the potential evaluations of its line searches; cgIterations stays 0).
+  bool quasiNewton = false;
+  int lineSearchEvaluations = 0;
 };
 
 // Where a running simulation is, so that the simulation of an edited scene (another fabric, a pin added in the
@@ -237,6 +241,17 @@ class Simulation {
                          TearOutcome then = TearOutcome::DrapeFromPlaced) const;
   // Starts the Newton drape from positions (|V| x 3; no rows = the placed garment) at scene time `time`.
   void startDrape(const Eigen::MatrixX3d& positions, double time);
+  // solver.preview.method quasi_newton (simulation_qn_preview.cpp): the Newton drape's own model solved by L-BFGS,
+  // from the placed garment (no `from`) or from a state at rest or a preview's resume state (positions, velocities,
+  // scene time; no relaxation).
+  void startQuasiNewtonPreview(const ResumeState* from);
+  // Its step, and the hand-over that switches the same solver to Newton (positions, velocities and time go on).
+  StepReport stepQuasiNewtonPreview();
+  void handOverToDrape();
+  bool quasiNewtonMethod() const;
+  // The preview's settle test on the speeds of a step's motion (|V|, m/s): their 99th percentile below
+  // solver.preview.rest_speed (preview alone) or handoff_speed for 0.1 s; waiting (assembling, relaxing): not yet.
+  bool previewSettled(std::vector<double> speeds, bool waiting);
 };
 
 // The simulation of scene's stage started at the positions of a garment state file (drape --from, the GUI's Load
