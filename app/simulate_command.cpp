@@ -35,7 +35,14 @@ nlohmann::json stepRecord(const StepReport& r) {
                       {"max_strain", r.maxStrain},
                       {"max_strain_triangle", r.maxStrainTriangle},
                       {"wall_time_s", r.wallTime}};
-  if (r.stage == "preview") {
+  if (r.quasiNewton) {  // the quasi-Newton preview: iterations are L-BFGS iterations
+    j["quasi_newton"] = true;
+    j["domains"] = r.domains;
+    j["line_search_evaluations"] = r.lineSearchEvaluations;
+    j["preconditioner_time_s"] = r.assemblyTime;
+    j["gradient_time_s"] = r.gradientTime;
+    j["direction_time_s"] = r.linearSolveTime;
+  } else if (r.stage == "preview") {
     j["domains"] = r.domains;
     j["sewn"] = r.sewn;
     j["assembly"] = r.assembly;
@@ -145,12 +152,16 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
         if (last.time >= 0.05 * maxSimTime)  // the first steps' rate says little about the rest
           std::snprintf(estimate, sizeof estimate, "  left<=%.0f s",
                         wall / last.time * std::max(0.0, maxSimTime - last.time));
-        char line[240];
-        std::snprintf(
-            line, sizeof line,
-            "  %s t=%.3f s  h=%.2e  iterations=%d  cg=%d  residual=%.2e  KE=%.2e  contacts=%d  wall=%.1f s%s\n",
-            last.stage.c_str(), last.time, last.h, last.iterations, last.cgIterations, last.residual,
-            last.kineticEnergy, last.contacts, wall, estimate);
+        // The quasi-Newton preview's iterations are L-BFGS iterations; its line searches evaluate the potential.
+        char work[80];
+        if (last.quasiNewton)
+          std::snprintf(work, sizeof work, "lbfgs=%d  evaluations=%d", last.iterations, last.lineSearchEvaluations);
+        else
+          std::snprintf(work, sizeof work, "iterations=%d  cg=%d", last.iterations, last.cgIterations);
+        char line[280];
+        std::snprintf(line, sizeof line, "  %s t=%.3f s  h=%.2e  %s  residual=%.2e  KE=%.2e  contacts=%d  wall=%.1f s%s\n",
+                      last.stage.c_str(), last.time, last.h, work, last.residual, last.kineticEnergy, last.contacts,
+                      wall, estimate);
         out << line << std::flush;
         nextPrint = last.time + 0.1;
         nextWallPrint = wall + 5.0;

@@ -138,14 +138,14 @@ NewtonStatus NewtonSolver::attemptQuasiNewton(double h, double scale, Eigen::Vec
     report.linearSolveSeconds += secondsSince(t0);
     if (!(slope < 0.0) || !d.allFinite()) return rn < m_settings.tauNewton ? NewtonStatus::Converged
                                                                              : NewtonStatus::Diverged;
-    // The full step first, judged by the gradient there (needed anyway): while Phi's slope along d is still not
-    // positive at x + d, Phi decreased on the way wherever it is convex along d (its inertia term makes it so near
-    // x). Otherwise a backtracking line search on Phi's values (Armijo).
+    // The full step first, judged by the gradient there (needed anyway): by the trapezoidal rule Phi(x + d) - Phi(x)
+    // ~ (g + g_t) . d / 2, exact where Phi is quadratic along d, so Armijo's sufficient decrease holds when
+    // g_t . d <= (1 - 2 c1) |g . d|. Otherwise a backtracking line search on Phi's values (Armijo).
     t0 = Clock::now();
     xt = x + d;
     gradient(xt, false, gt);
     ++report.lineSearchEvaluations;
-    bool accepted = gt.allFinite() && gt.dot(d) <= 0.0;
+    bool accepted = gt.allFinite() && gt.dot(d) <= -(1.0 - 2.0 * m_qnSettings.armijo) * slope;
     const bool fullGradient = gt.allFinite();
     double step = 1.0;
     if (!accepted) {
