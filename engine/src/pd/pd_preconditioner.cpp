@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <tbb/info.h>
 
 #include "drape/pd/contact_factor.h"
@@ -22,8 +24,8 @@ constexpr double kRefactorSpread = 2.0;
 
 // A changing stiffness rounded to a power of 4: the factor is updated only for the vertices whose stiffness moved that
 // far, not for every small change of a contact's or friction's stiffness from one iteration to the next.
-// Within a step a vertex's stiffness enters H0 once it is this many times what H0 holds there (its changing stiffness,
-// or its mass term where it has none).
+// Within a step a vertex's changing stiffness enters H0 once it is this many times what H0 holds there (its changing
+// stiffness, or K's diagonal).
 constexpr double kStiffenFactor = 16.0;
 
 double quantised(double k) { return std::exp2(2.0 * std::round(0.5 * std::log2(k))); }
@@ -51,8 +53,23 @@ struct PdPreconditioner::Impl {
   std::vector<double> pinnedDiagonal;
   Eigen::MatrixX3d b, x;
 
+  // Per free DOF: K's diagonal, and the changing stiffness H0 holds there (0: none).
+  std::vector<double> diagonal, weight;
+
   bool build(double h, double scale);
+  // stiff from weight.
+  void collect();
 };
+
+void PdPreconditioner::Impl::collect() {
+  stiff = ContactSet{};
+  for (size_t d = 0; d < weight.size(); ++d)
+    if (weight[d] > 0.0) {
+      stiff.dofs.push_back(static_cast<int>(d));
+      stiff.weights.push_back(weight[d]);
+    }
+  stiff.targets = Eigen::MatrixX3d::Zero(stiff.size(), 3);
+}
 
 bool PdPreconditioner::Impl::build(double h, double scale) {
   factor.reset();
@@ -79,6 +96,9 @@ bool PdPreconditioner::Impl::build(double h, double scale) {
     global = std::make_unique<DomainDecomposedSolver>(splitSystem(*system, triangleDomain, domains),
                                                       system->freeCount());
   ++factorisations;
+  diagonal.assign(system->freeCount(), 0.0);
+  for (int d = 0; d < system->freeCount(); ++d) diagonal[d] = system->matrix().coeff(d, d);
+  weight.assign(system->freeCount(), 0.0);
   factoredH = h;
   factoredScale = scale;
   return global->ok();
@@ -103,25 +123,26 @@ PdPreconditioner::PdPreconditioner(const newton::ClothModel& model, double stitc
                                          im.domains);
 }
 
-PdPreconditioner::~PdPreconditioner() = default;
+PdPreconditioner::~PdPreconditioner() {
+  if (std::getenv("DRAPE_QN_PROF"))
+    std::fprintf(stderr, "pdprec builds=%d contact factorisations=%d updates=%d\n", m_impl->factorisations,
+                 m_impl->factor ? m_impl->factor->factorisations() : 0, m_impl->factor ? m_impl->factor->updates() : 0);
+}
 
 bool PdPreconditioner::prepare(double h, double scale, const Eigen::VectorXd& vertexStiffness) {
   Impl& im = *m_impl;
-  if (!im.system || spread(h, im.factoredH) > kRefactorSpread || spread(scale, im.factoredScale) > kRefactorSpread) {
-    if (!im.build(h, scale)) return false;
-  }
+  const bool fresh =
+      !im.system || spread(h, im.factoredH) > kRefactorSpread || spread(scale, im.factoredScale) > kRefactorSpread;
+  if (fresh && !im.build(h, scale)) return false;
   const PdSystem& sys = *im.system;
   const std::vector<int>& dof = sys.dofOfVertex();
   const Eigen::VectorXd& mass = sys.masses();
-  im.stiff = ContactSet{};
   for (int v = 0; v < sys.vertexCount(); ++v) {
+    const int d = dof[v];
     const double k = v < vertexStiffness.size() ? vertexStiffness[v] : 0.0;
-    if (dof[v] >= 0 && k > 0.0) {
-      im.stiff.dofs.push_back(dof[v]);
-      im.stiff.weights.push_back(quantised(k));
-    }
+    if (d >= 0) im.weight[d] = k > 0.0 ? quantised(k) : 0.0;
   }
-  im.stiff.targets = Eigen::MatrixX3d::Zero(im.stiff.size(), 3);
+  im.collect();
   const std::vector<int>& pinned = sys.pinnedVertices();
   im.pinnedDiagonal.resize(pinned.size());
   for (size_t p = 0; p < pinned.size(); ++p) {
@@ -157,26 +178,18 @@ bool PdPreconditioner::stiffen(const Eigen::VectorXd& vertexStiffness) {
   Impl& im = *m_impl;
   const PdSystem& sys = *im.system;
   const std::vector<int>& dof = sys.dofOfVertex();
-  std::vector<double> weight(sys.freeCount(), 0.0);
-  for (int k = 0; k < im.stiff.size(); ++k) weight[im.stiff.dofs[k]] = im.stiff.weights[k];
   bool changed = false;
   for (int v = 0; v < sys.vertexCount() && v < vertexStiffness.size(); ++v) {
+    const int d = dof[v];
     const double k = vertexStiffness[v];
-    if (dof[v] < 0 || !(k > 0.0)) continue;
-    double& w = weight[dof[v]];
-    if (k > kStiffenFactor * std::max(w, sys.masses()[v] / (im.factoredH * im.factoredH))) {
+    if (d < 0 || !(k > 0.0)) continue;
+    double& w = im.weight[d];
+    if (k > kStiffenFactor * std::max(w, im.diagonal[d])) {
       w = quantised(k);
       changed = true;
     }
   }
-  if (!changed) return true;
-  im.stiff = ContactSet{};
-  for (int d = 0; d < sys.freeCount(); ++d)
-    if (weight[d] > 0.0) {
-      im.stiff.dofs.push_back(d);
-      im.stiff.weights.push_back(weight[d]);
-    }
-  im.stiff.targets = Eigen::MatrixX3d::Zero(im.stiff.size(), 3);
+  if (changed) im.collect();
   return true;
 }
 

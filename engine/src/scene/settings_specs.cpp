@@ -46,7 +46,7 @@ const std::vector<SettingSpec>& Settings::specs() {
        "model\")", -1e300, 1e300, {"projective", "quasi_newton"}},
       {"solver.preview.qn_time_step", T::Number, "0.008333333333333333", "s", "quasi-Newton preview: time step", 1e-5,
        0.1},
-      {"solver.preview.qn_iterations", T::Integer, "8", "", "quasi-Newton preview: L-BFGS iterations per step", 1,
+      {"solver.preview.qn_iterations", T::Integer, "4", "", "quasi-Newton preview: L-BFGS iterations per step", 1,
        1000},
       {"solver.preview.time_step", T::Number, "0.0020833333333333333", "s",
        "preview time step h (the paper: 1/120 s; 1/480 s keeps stiff, light garments on the body, docs/ENGINE.md)", 1e-5,

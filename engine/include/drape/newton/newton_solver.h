@@ -114,7 +114,7 @@ struct NewtonSettings {
 // Armijo line search. A step ends once the momentum residual is below tau_n or after maxIterations iterations, where
 // it is kept as it is (the preview solves inexactly).
 struct QuasiNewtonSettings {
-  int maxIterations = 8;            // L-BFGS iterations per step
+  int maxIterations = 4;            // L-BFGS iterations per step
   int history = 8;                  // curvature pairs kept (m)
   int maxLineSearchIterations = 10;  // halvings of the step length
   double armijo = 1e-4;             // sufficient decrease, c1
