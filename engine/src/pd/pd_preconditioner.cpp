@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <tbb/info.h>
 
 #include "drape/pd/contact_factor.h"
@@ -123,11 +121,7 @@ PdPreconditioner::PdPreconditioner(const newton::ClothModel& model, double stitc
                                          im.domains);
 }
 
-PdPreconditioner::~PdPreconditioner() {
-  if (std::getenv("DRAPE_QN_PROF"))
-    std::fprintf(stderr, "pdprec builds=%d contact factorisations=%d updates=%d\n", m_impl->factorisations,
-                 m_impl->factor ? m_impl->factor->factorisations() : 0, m_impl->factor ? m_impl->factor->updates() : 0);
-}
+PdPreconditioner::~PdPreconditioner() = default;
 
 bool PdPreconditioner::prepare(double h, double scale, const Eigen::VectorXd& vertexStiffness) {
   Impl& im = *m_impl;
