@@ -70,5 +70,32 @@ TEST(StartState, PreviewAndPipelineStartAtTheGivenPositions) {
   }
 }
 
+// The GUI's Drape after a preview that ran to solver.max_sim_time (SimulationWorker::startDrape): the drape built from
+// that preview state has the time limit of its own, so it runs instead of finishing at once.
+TEST(StartState, DrapeFromAPreviewThatRanToTheLimitHasItsOwnTimeLimit) {
+  Scene preview = defaultScene("preview");
+  preview.settings.set("solver.max_sim_time", "0.04", "test");
+  Simulation sim(preview);
+  while (!sim.finished()) sim.step();
+  ASSERT_EQ(sim.endReason(), "MaxSimTime");
+  ResumeState from = sim.resumeState();
+  from.stage = "drape";
+  from.previewPositions = from.positions;
+  from.previewTime = from.time;
+  Scene drapeScene = preview;
+  drapeScene.settings.set("solver.stage", "drape", "test");
+  Simulation drape(drapeScene, from);
+  ASSERT_TRUE(drape.resumed());
+  EXPECT_FALSE(drape.finished());
+  int steps = 0;
+  while (!drape.finished()) {
+    EXPECT_EQ(drape.step().stage, "drape");
+    ++steps;
+  }
+  EXPECT_GT(steps, 0);
+  EXPECT_EQ(drape.endReason(), "MaxSimTime");
+  EXPECT_NEAR(drape.time(), from.time + 0.04, 0.011);  // the drape's own 0.04 s (its steps grow to 10 ms)
+}
+
 }  // namespace
 }  // namespace drape::test

@@ -189,7 +189,9 @@ NewtonStatus NewtonSolver::attemptQuasiNewton(double h, double scale, Eigen::Vec
     rn = h * g.norm();
     report.residual = rn;
     report.residualHistory.push_back(rn);
-    if (rn < m_settings.tauNewton) {
+    // Near rest, below tau_n is not enough (NewtonSettings::restAwareConvergence): the velocity error left must be
+    // below the motion the early stop waits to die out, or the accepted errors keep the garment creeping.
+    if (rn < m_settings.tauNewton && residualBelowRest(-h * g)) {
       status = NewtonStatus::Converged;
       break;
     }

@@ -147,6 +147,7 @@ void Simulation::build(const ResumeState* from) {
       m_resumed = m_previewFailure.empty();
     }
     startDrape(m_resumed ? from->previewPositions : Eigen::MatrixX3d(), m_resumed ? from->previewTime : 0.0);
+    m_drapeOwnBudget = m_resumed;
   } else if (runsPreview) {
     m_resumed = false;
     startPreview();
@@ -518,7 +519,10 @@ std::string Simulation::endReason() const {
   const bool previewOnly = m_scene.settings.text("solver.stage") == "preview";
   // A preview that hands over to the drape is never at rest itself: the drape follows.
   if (m_atRest && (stage() == "drape" || previewOnly)) return "AtRest";
-  if (time() >= m_scene.settings.number("solver.max_sim_time") - 1e-12) return "MaxSimTime";
+  // A drape started from a preview's state (the GUI's Drape after its Preview) has solver.max_sim_time of its own: a
+  // preview that ran to the limit would leave it none.
+  const double start = m_drapeOwnBudget && stage() == "drape" ? m_solver->previewTime : 0.0;
+  if (time() - start >= m_scene.settings.number("solver.max_sim_time") - 1e-12) return "MaxSimTime";
   if (m_steps >= m_scene.settings.integer("solver.max_steps")) return "MaxSteps";
   return "";
 }

@@ -110,9 +110,9 @@ StepReport Simulation::stepQuasiNewtonPreview() {
   const bool settled = previewSettled(std::move(speeds), r.relaxing || !stepped);
   const bool previewOnly = m_scene.settings.text("solver.stage") == "preview";
   const bool timeUp = time() - m_solver->previewOffset >= m_scene.settings.number("solver.preview.max_time") - 1e-12;
-  if (previewOnly) {
-    m_atRest = settled;
-    report.atRest = settled;
+  if (previewOnly) {  // the drape's own early stop: the same model comes to rest by the same test
+    m_atRest = solver.atRest();
+    report.atRest = m_atRest;
   } else if (settled || timeUp || r.status == newton::NewtonStatus::Diverged) {
     handOverToDrape();
   }

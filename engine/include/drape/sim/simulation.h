@@ -106,7 +106,8 @@ class Simulation {
   StepReport step();
   // True when the garment is at rest (early stop) or the scene's time/step limit is reached.
   bool finished() const;
-  // Why the run finished: "AtRest", "MaxSimTime" (solver.max_sim_time) or "MaxSteps" (solver.max_steps); empty
+  // Why the run finished: "AtRest", "MaxSimTime" (solver.max_sim_time of scene time; for a drape built from a
+  // ResumeState's preview state, of the drape's own time) or "MaxSteps" (solver.max_steps); empty
   // while it is not finished. A Diverged or Cancelled step is the step's own status (StepReport).
   std::string endReason() const;
   Snapshot snapshot() const;
@@ -186,6 +187,7 @@ class Simulation {
   bool m_targetsFreed = false;     // previewTargetsFreed()
   double m_courantNumber = 0.0;    // previewCourantNumber()
   double m_overshootSince = -1.0;  // preview: scene time since which the stretch has been extreme (-1: it is not)
+  bool m_drapeOwnBudget = false;   // the drape started from a resumed preview state (endReason)
   int m_dragVertex = -1;
   Eigen::Vector3d m_dragTarget = Eigen::Vector3d::Zero();
 
