@@ -72,6 +72,9 @@ void Simulation::handOverToDrape() {
   solver.setQuasiNewton(nullptr);
   const newton::NewtonSettings drape = newtonSettingsFrom(m_scene.settings);
   solver.settings().hMax = drape.hMax * m_scene.settings.number("solver.newton.h_max_factor_after_preview");
+  // Newton starts at its own h_max and grows from there, as after the projective preview: at the preview's step the
+  // first Newton steps of a garment still moving can fail to converge and split down to 0.1 ms.
+  solver.restartStepSize(drape.hMax);
   m_solver->quasiNewtonPreview = false;
   m_atRest = false;
 }

@@ -174,6 +174,11 @@ class NewtonSolver {
   // above tau_n after its iterations is kept (MaxIterations is not a failure there).
   void setQuasiNewton(std::shared_ptr<StepPreconditioner> preconditioner, QuasiNewtonSettings settings = {});
   bool quasiNewton() const { return m_quasiNewton != nullptr; }
+  // The next step's size (s), growing from there by the time-splitting rule.
+  void restartStepSize(double h) {
+    m_h = h;
+    m_goodSteps = 0;
+  }
 
   const Eigen::VectorXd& positions() const { return m_x; }   // 3|V|, metres
   const Eigen::VectorXd& velocities() const { return m_v; }  // 3|V|, m/s
