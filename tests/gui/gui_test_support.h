@@ -5,6 +5,7 @@
 
 #include <QApplication>
 #include <QCoreApplication>
+#include <QSettings>
 #include <QTest>
 #include <cstdlib>
 #include <functional>
@@ -35,6 +36,11 @@ inline QApplication& guiApplication() {
   static int argc = guiHaveDisplay() ? 1 : 3;
   QCoreApplication::setOrganizationName("DrapeTests");
   QCoreApplication::setApplicationName("drape_gui_tests");
+  // Settings (the recent files) of this process alone: ctest runs the tests in parallel processes, and one that opens
+  // a scene would otherwise change the recent files another is reading.
+  const QString settings = QStringLiteral(DRAPE_TEST_OUTPUT_DIR "/qsettings/%1").arg(QCoreApplication::applicationPid());
+  QSettings::setPath(QSettings::NativeFormat, QSettings::UserScope, settings);
+  QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, settings);
   static QApplication* app = new QApplication(argc, guiHaveDisplay() ? argvDisplay : argvOffscreen);
   return *app;
 }
