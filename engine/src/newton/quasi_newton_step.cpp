@@ -33,19 +33,14 @@ void NewtonSolver::freshVertexStiffness(const Eigen::VectorXd& x, Eigen::VectorX
   const int n = m_model.numVertices();
   k = Eigen::VectorXd::Zero(n);
   if (m_energies.size() == m_elasticCount) return;
-  m_matrix.setZero();
-  m_matrixReady = false;
-  m_elasticHessianH = 0.0;
-  m_pcgCache.valid = false;
-  m_coarseStale = true;
-  m_coupledStale = true;
-  for (size_t e = m_elasticCount; e < m_energies.size(); ++e) m_energies[e]->addHessian(x, m_matrix);
-  std::vector<Eigen::Matrix3d> diagonal(n, Eigen::Matrix3d::Zero());
-  for (int i = 0; i < n; ++i) diagonal[i] = m_matrix.diagonalBlock(i);
-  for (const auto& e : m_matrix.dynamicEntries())
-    if (e.i == e.j) diagonal[e.i] += e.block;
+  // A diagonal-only pattern: the changing terms write their diagonal blocks there and the rest as dynamic blocks.
+  if (m_freshHessian.numBlocks() != n) m_freshHessian.build(n, {});
+  m_freshHessian.setZero();
+  for (size_t e = m_elasticCount; e < m_energies.size(); ++e) m_energies[e]->addHessian(x, m_freshHessian);
+  for (const auto& e : m_freshHessian.dynamicEntries())
+    if (e.i == e.j) m_freshHessian.diagonalBlock(e.i) += e.block;
   for (int i = 0; i < n; ++i) {
-    const Eigen::Matrix3d& b = diagonal[i];
+    const Eigen::Matrix3d& b = m_freshHessian.diagonalBlock(i);
     if (b.isZero(0.0)) continue;
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
     eig.computeDirect(0.5 * (b + b.transpose()), Eigen::EigenvaluesOnly);

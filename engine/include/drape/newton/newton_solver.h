@@ -207,7 +207,7 @@ class NewtonSolver {
   NewtonStatus attemptQuasiNewton(double h, double scale, Eigen::VectorXd& x, Eigen::VectorXd& v,
                                   NewtonStepReport& report);
   // Per vertex (|V|, N/m): the largest eigenvalue of the diagonal Hessian block at x of the terms assembled afresh
-  // in every iteration (contact, friction, the drag spring); 0 where they add none. Overwrites m_matrix.
+  // in every iteration (contact, friction, the drag spring); 0 where they add none. Assembles into m_freshHessian.
   void freshVertexStiffness(const Eigen::VectorXd& x, Eigen::VectorXd& k);
   // b = M (v_n - v) - h dE/dx(x) (eq. 4); momentumResidual takes the gradient g = dE/dx already summed.
   void residual(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double h, Eigen::VectorXd& b) const;
@@ -271,6 +271,7 @@ class NewtonSolver {
   std::atomic<bool> m_cancel{false};
   std::shared_ptr<StepPreconditioner> m_quasiNewton;  // setQuasiNewton
   QuasiNewtonSettings m_qnSettings;
+  BlockMatrix m_freshHessian;  // freshVertexStiffness's diagonal-pattern matrix
 };
 
 }  // namespace drape::newton
