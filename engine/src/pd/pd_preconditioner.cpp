@@ -20,12 +20,12 @@ double spread(double a, double b) { return a > b ? a / b : b / a; }
 // Refactorisation when h or the stiffness scale moved by more than this factor from the factorised ones.
 constexpr double kRefactorSpread = 2.0;
 
-// A changing stiffness rounded to a power of 4: the factor is updated only for the vertices whose stiffness moved that
-// far, not for every small change of a contact's or friction's stiffness from one iteration to the next.
 // Within a step a vertex's changing stiffness enters H0 once it is this many times what H0 holds there (its changing
 // stiffness, or K's diagonal).
 constexpr double kStiffenFactor = 16.0;
 
+// A changing stiffness rounded to a power of 4: the factor is updated only for the vertices whose stiffness moved that
+// far, not for every small change of a contact's or friction's stiffness from one step to the next.
 double quantised(double k) { return std::exp2(2.0 * std::round(0.5 * std::log2(k))); }
 
 }  // namespace
@@ -125,9 +125,9 @@ PdPreconditioner::~PdPreconditioner() = default;
 
 bool PdPreconditioner::prepare(double h, double scale, const Eigen::VectorXd& vertexStiffness) {
   Impl& im = *m_impl;
-  const bool fresh =
+  const bool refactor =
       !im.system || spread(h, im.factoredH) > kRefactorSpread || spread(scale, im.factoredScale) > kRefactorSpread;
-  if (fresh && !im.build(h, scale)) return false;
+  if (refactor && !im.build(h, scale)) return false;
   const PdSystem& sys = *im.system;
   const std::vector<int>& dof = sys.dofOfVertex();
   const Eigen::VectorXd& mass = sys.masses();
