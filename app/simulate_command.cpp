@@ -180,6 +180,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
              {"pinned_vertices", simulation.pinned().size()},
              {"final", stepRecord(last)},
              {"domains", domains}};
+    if (!simulation.divergedReason().empty()) stats["diverged_reason"] = simulation.divergedReason();
     if (!simulation.previewFailure().empty()) stats["preview_failure"] = simulation.previewFailure();
     stats["preview_recovered"] = simulation.previewRecoveries();
     stats["preview_restarts"] = simulation.previewRestarts();
@@ -189,7 +190,9 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
     out << simulation.stage() << ": " << status << " after " << simulation.steps() << " steps, " << simulation.time()
         << " s simulated; wrote " << options.output << "\n";
     if (status == "Diverged")
-      out << "drape: the solver diverged at t=" << last.time << " s; the last good state was written\n";
+      out << "drape: the " << last.stage << " diverged at t=" << last.time << " s"
+          << (simulation.divergedReason().empty() ? "" : ": " + simulation.divergedReason())
+          << "; the last good state was written\n";
     const QualityReport quality = checkDrapeQuality(simulation, status);
     printQualityWarnings(quality, out);
     stats["quality"] = qualityJson(quality);

@@ -69,5 +69,12 @@ TEST(CliHostileInput, PlacementTranslateOutOfRange) {
                      "setting 'placement.translate': '0,1e308,0': y = 1e308 is out of range [-100, 100] m");
 }
 
+TEST(CliHostileInput, FabricWithNoStretchStiffness) {
+  // Zero stretch stiffness holds nothing together: refused with the range, as a fabric file's would be.
+  expectOneLineError(drape("--info " + quote((assetsDir() / "scenes/tablecloth.json").string()) +
+                           " --set fabric.stretch_weft=0"),
+                     "setting 'fabric.stretch_weft': 0 is out of range [0.001, 1e+07] N/m");
+}
+
 }  // namespace
 }  // namespace drape::test

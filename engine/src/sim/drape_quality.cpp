@@ -11,6 +11,7 @@
 #include "drape/geometry/strain.h"
 #include "drape/scene/settings.h"
 #include "drape/sim/simulation.h"
+#include "sim/garment_place.h"
 
 namespace drape {
 namespace {
@@ -22,31 +23,6 @@ std::string format(const char* pattern, Args... args) {
   return buffer;
 }
 
-std::string panelOf(const Garment& garment, int panel) {
-  if (panel < 0 || panel >= static_cast<int>(garment.panelNames.size())) return "";
-  return " of panel '" + garment.panelNames[panel] + "'";
-}
-
-std::string at(const Eigen::Vector3d& p) {
-  return format(" at (%.3f, %.3f, %.3f) m", p.x(), p.y(), p.z());
-}
-
-std::string vertexPlace(const Garment& garment, const Eigen::MatrixX3d& x, int v) {
-  const int panel = v < garment.vertexPanel.size() ? garment.vertexPanel[v] : -1;
-  return "vertex " + std::to_string(v) + panelOf(garment, panel) + at(x.row(v).transpose());
-}
-
-std::string triangleName(const Garment& garment, int t) {
-  const int panel = t < garment.trianglePanel.size() ? garment.trianglePanel[t] : -1;
-  return "triangle " + std::to_string(t) + panelOf(garment, panel);
-}
-
-Eigen::Vector3d centreOf(const Garment& garment, const Eigen::MatrixX3d& x, int t) {
-  return (x.row(garment.triangles(t, 0)) + x.row(garment.triangles(t, 1)) + x.row(garment.triangles(t, 2)))
-             .transpose() /
-         3.0;
-}
-
 QualityCheck strainCheck(const Garment& garment, const Eigen::MatrixX3d& x, const QualitySettings& s) {
   QualityCheck c;
   c.name = "max_strain";
@@ -54,7 +30,7 @@ QualityCheck strainCheck(const Garment& garment, const Eigen::MatrixX3d& x, cons
   const Eigen::VectorXd stretch = triangleStretch(garment.rest, x, garment.triangles);
   if (stretch.size() > 0) {
     c.value = stretch.maxCoeff(&c.triangle);
-    c.where = triangleName(garment, c.triangle) + at(centreOf(garment, x, c.triangle));
+    c.where = triangleName(garment, c.triangle) + atPoint(triangleCentre(garment, x, c.triangle));
   }
   c.passed = !(c.value > c.threshold);  // a NaN stretch fails
   c.message =
@@ -122,7 +98,7 @@ QualityCheck outwardCheck(const Garment& garment, const Eigen::MatrixX3d& x, con
   c.passed = c.value >= c.threshold;
   c.triangle = facing.inwardFace;
   if (facing.inwardFace >= 0)
-    c.where = triangleName(garment, facing.inwardFace) + at(centreOf(garment, x, facing.inwardFace));
+    c.where = triangleName(garment, facing.inwardFace) + atPoint(triangleCentre(garment, x, facing.inwardFace));
   c.message =
       format("outward_faces: %.1f %% of the %d garment faces on a collider face away from it (threshold %.1f %%)",
              100.0 * c.value, facing.nearFaces, 100.0 * c.threshold) +
@@ -147,7 +123,7 @@ QualityCheck selfIntersectionCheck(const Garment& garment, const Eigen::MatrixX3
   c.otherTriangle = found.secondTriangle;
   if (found.count > 0)
     c.where = triangleName(garment, found.firstTriangle) + " and " + triangleName(garment, found.secondTriangle) +
-              at(centreOf(garment, x, found.firstTriangle));
+              atPoint(triangleCentre(garment, x, found.firstTriangle));
   c.message = format("self_intersections: %d pairs of garment triangles cross (threshold %d)", found.count,
                      s.maxSelfIntersections) +
               (c.where.empty() ? std::string() : "; first: " + c.where);

@@ -19,6 +19,7 @@
 #include "drape/sim/snapshot_builder.h"
 #include "sim/cloth_model_builder.h"
 #include "sim/contact_terms.h"
+#include "sim/exploded_state.h"
 #include "sim/simulation_solver.h"
 
 namespace drape {
@@ -155,6 +156,13 @@ void Simulation::build(const ResumeState* from) {
     m_resumed = false;
     startDrape(Eigen::MatrixX3d(), 0.0);
   }
+  m_sceneBox.setEmpty();
+  for (Eigen::Index v = 0; v < m_colliderMesh.vertices.rows(); ++v)
+    m_sceneBox.extend(m_colliderMesh.vertices.row(v).transpose());
+  for (Eigen::Index v = 0; v < m_solver->model.positions.size() / 3; ++v)
+    m_sceneBox.extend(m_solver->model.positions.segment<3>(3 * v));
+  const Eigen::MatrixX3d start = positions();
+  for (Eigen::Index v = 0; v < start.rows(); ++v) m_sceneBox.extend(start.row(v).transpose());
 }
 
 pd::PreviewSettings Simulation::previewSettings() const {
@@ -483,6 +491,7 @@ double Simulation::time() const {
 }
 
 Eigen::MatrixX3d Simulation::positions() const {
+  if (!m_divergedReason.empty()) return m_lastGood;
   if (m_solver->assembly) return m_solver->assembly->toGarment * rowsOf(m_solver->assembly->preview->positions());
   return rowsOf(m_solver->preview ? m_solver->preview->positions() : m_solver->newton->positions());
 }
@@ -530,6 +539,15 @@ std::string Simulation::endReason() const {
 StepReport Simulation::step() {
   const auto start = std::chrono::steady_clock::now();
   StepReport report;
+  if (!m_divergedReason.empty()) {  // exploded: nothing steps on from there
+    report.status = StepStatus::Diverged;
+    report.stage = stage();
+    report.time = time();
+    return report;
+  }
+  m_lastGood = positions();
+  const size_t restartsBefore = m_previewRestartReasons.size();
+  const std::string failureBefore = m_previewFailure;
   const bool projective = !m_solver->newton;  // the constraint-based preview (or its assembly) takes this step
   if (m_solver->quasiNewtonPreview) {
     report = stepQuasiNewtonPreview();
@@ -610,6 +628,17 @@ StepReport Simulation::step() {
   const Eigen::VectorXd stretch = triangleStretch(m_garment.rest, x, m_garment.triangles);
   report.maxStrain = stretch.size() ? stretch.maxCoeff(&report.maxStrainTriangle) : 0.0;
   if (report.stage == "preview" && projective) failPreviewIfTorn(report, x);
+  // The projective preview's tears start it over or give it up (failPreviewIfTorn); any other exploded state ends the
+  // run Diverged with the state before the step.
+  const bool restarted = m_previewRestartReasons.size() != restartsBefore || m_previewFailure != failureBefore;
+  if (!restarted && report.status != StepStatus::Diverged && report.status != StepStatus::Cancelled) {
+    std::string reason = explodedReason(m_garment, x, stretch, m_sceneBox, m_scene.settings.number("sim.gravity"),
+                                        report.time);
+    if (!reason.empty()) {
+      report.status = StepStatus::Diverged;
+      m_divergedReason = std::move(reason);
+    }
+  }
   report.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }

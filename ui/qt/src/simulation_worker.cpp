@@ -265,9 +265,13 @@ void SimulationWorker::stepOnce() {
     m_running.store(false);
     setState(RunState::Paused);
     sendSnapshot();
-    emit errorOccurred(QStringLiteral("The drape diverged at t = %1 s (step %2); the last good state is kept.")
+    // Why, when the garment exploded (Simulation::divergedReason); else the solver found no step that converges.
+    const std::string& why = simulation->divergedReason();
+    emit errorOccurred(QStringLiteral("The %1 diverged at t = %2 s (step %3)%4; the last good state is kept.")
+                           .arg(QString::fromStdString(report.stage))
                            .arg(report.time, 0, 'g', 4)
-                           .arg(simulation->steps()));
+                           .arg(simulation->steps())
+                           .arg(why.empty() ? QString() : QStringLiteral(": ") + QString::fromStdString(why)));
     return;
   }
   if (simulation->finished()) {

@@ -4,6 +4,7 @@
 // Stages follow solver.stage: "preview" (PD-DD only), "drape" (Newton from the placed garment) or "full"
 // (the preview until it settles or solver.preview.max_time, then the Newton drape from the preview's
 // positions with velocities reset).
+#include <Eigen/Geometry>
 #include <atomic>
 #include <filesystem>
 #include <memory>
@@ -102,8 +103,12 @@ class Simulation {
   Simulation& operator=(const Simulation&) = delete;
 
   // Advances one step; never touches UI, never throws for numerical trouble (a Diverged step keeps the last
-  // good state).
+  // good state). A step that leaves the garment exploded (sim/exploded_state.h: a triangle stretched past any
+  // fabric, a vertex far outside the scene) is Diverged too, in every stage: positions() stay the state before it,
+  // divergedReason() says where, and every later step is Diverged at once.
   StepReport step();
+  // Why the garment exploded, naming the triangle or vertex; empty unless a step ended Diverged that way.
+  const std::string& divergedReason() const { return m_divergedReason; }
   // True when the garment is at rest (early stop) or the scene's time/step limit is reached.
   bool finished() const;
   // Why the run finished: "AtRest", "MaxSimTime" (solver.max_sim_time of scene time; for a drape built from a
@@ -188,6 +193,9 @@ class Simulation {
   double m_courantNumber = 0.0;    // previewCourantNumber()
   double m_overshootSince = -1.0;  // preview: scene time since which the stretch has been extreme (-1: it is not)
   bool m_drapeOwnBudget = false;   // the drape started from a resumed preview state (endReason)
+  Eigen::AlignedBox3d m_sceneBox;  // the colliders and the garment as placed (or resumed): explodedReason
+  Eigen::MatrixX3d m_lastGood;     // positions before the step that exploded (divergedReason)
+  std::string m_divergedReason;
   int m_dragVertex = -1;
   Eigen::Vector3d m_dragTarget = Eigen::Vector3d::Zero();
 
