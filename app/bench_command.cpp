@@ -79,6 +79,7 @@ std::vector<std::string> splitCommas(const std::string& s) {
 }  // namespace
 
 int runBench(const CliOptions& options, std::ostream& out) {
+  if (options.extremes) return runExtremes(options, out);
   // Tight reference: a 4x smaller step limit and 100x tighter tolerances than the paper's defaults.
   const std::vector<std::pair<std::string, std::string>> reference = {{"solver.newton.h_max", "2.5e-4"},
                                                                       {"solver.newton.tolerance", "1e-5"},

@@ -43,6 +43,10 @@ std::string usageText() {
                                           render a body mesh on its own (mannequin previews)
   drape --bench SCENE [--sweep KEY=V1,V2,...]... [-o REPORT.json] [--max-sim-time S]
                                           speed/accuracy trade: each sweep value against a tight reference drape
+  drape --bench SCENE --extremes [--solver preview|drape|full] [-o REPORT.json] [--max-sim-time S]
+                                          every physics setting at both ends of its range (and the hard
+                                          combinations) in each stage: finite, diverged only when said why,
+                                          nothing inside the body (exit 1 when a cell fails)
   drape --make-avatar MEASUREMENTS.(yaml|json) -o AVATAR.(obj|glb)
                                           a smooth watertight mannequin from body measurements (cm)
   drape --list-settings                   every setting with its default, unit and meaning
@@ -103,6 +107,8 @@ CliOptions parseCommandLine(int argc, char** argv) {
       o.scene.input = value(i, a);
     } else if (a == "--sweep") {
       o.sweeps.push_back(value(i, a));
+    } else if (a == "--extremes") {
+      o.extremes = true;
     } else if (a == "--render") {
       setMode(Mode::Render, a);
       o.scene.input = value(i, a);
@@ -174,6 +180,8 @@ CliOptions parseCommandLine(int argc, char** argv) {
                                  : o.mode == Mode::Simulate ? "--simulate"
                                                             : "--make-avatar") +
                      ": missing -o OUTPUT");
+  if (o.extremes && (o.mode != Mode::Bench || !o.sweeps.empty()))
+    throw InputError("--extremes: only with --bench, and not with --sweep");
   if (!o.from.empty() && o.mode != Mode::Simulate && o.mode != Mode::Render)
     throw InputError("--from: only with --simulate or --render");
   return o;

@@ -25,6 +25,7 @@ struct CliOptions {
   double maxSimTime = -1.0;            // --max-sim-time
   std::string from;                    // --from STATE.obj (simulate, render): the stage starts at its positions
   std::vector<std::string> sweeps;     // --sweep KEY=V1,V2 (bench)
+  bool extremes = false;               // --extremes (bench): the extremes grid instead of the trade
 };
 
 // Parses argv; throws InputError with a one-line message for anything malformed.

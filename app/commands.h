@@ -13,6 +13,8 @@ int runInfo(const CliOptions& options, std::ostream& out);
 int runSimulate(const CliOptions& options, std::ostream& out);
 int runRender(const CliOptions& options, std::ostream& out);
 int runBench(const CliOptions& options, std::ostream& out);
+// --bench --extremes: the extremes grid (drape/sim/extremes_grid.h) on the scene, in --solver's stage or all three.
+int runExtremes(const CliOptions& options, std::ostream& out);
 int runMakeAvatar(const CliOptions& options, std::ostream& out);
 
 // The scene's camera settings: a preset view, or an explicit eye (and target, up) when camera.eye is set.

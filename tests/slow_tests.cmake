@@ -7,6 +7,7 @@ set(DRAPE_SLOW_TESTS
   CliPlacement.ShirtOnABroaderTallerMannequinIsMovedWithAWarningPerPanel
   CliQuality.GarmentTooSmallForTheBodyFailsTheVerdictWithExitStatus4
   ExplodedState.EndsDivergedInEveryStageWithTheStateBeforeIt
+  ExtremesGrid.LibraryTshirtHoldsInEveryCell
   Mannequin.MatchesTheRealMeanBodyOverTorsoAndLegs
   Mannequin.ShippedFemaleAndMaleMeasurementsFit
   NewtonContact.StretchedClothRestsWithinItsContactThickness
