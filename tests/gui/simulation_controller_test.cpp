@@ -280,5 +280,37 @@ TEST_F(SimulationControllerTest, TornPreviewAloneGoesOnWithOneNotice) {
   EXPECT_TRUE(rec.errors.empty());
 }
 
+TEST_F(SimulationControllerTest, ExplodedGarmentStopsWithWhereItExplodedAndKeepsTheStateBeforeIt) {
+  // The default t-shirt that no fabric holds together (the softest stretch the settings admit, no shear or bending
+  // stiffness, 1000 m/s^2, 0.1 s steps): the drape stops Diverged, the error names the triangle and its panel, and
+  // the garment shown is the last good state, not the exploded one.
+  qt::SceneState state;
+  state.input = assetsDir() / "scenes" / "default.json";
+  state.overrides = {{"solver.stage", "drape"},       {"fabric.stretch_warp", "1e-3"}, {"fabric.stretch_weft", "1e-3"},
+                     {"fabric.shear", "0"},           {"fabric.bend_warp", "0"},       {"fabric.bend_weft", "0"},
+                     {"sim.gravity", "-1000"},        {"solver.newton.h_max", "0.1"},  {"solver.max_sim_time", "0.5"}};
+  qt::SimulationController controller;
+  Recorder rec;
+  rec.attach(controller);
+  controller.setSimulation(std::make_shared<Simulation>(qt::buildScene(state)));
+  ASSERT_TRUE(waitUntil([&] { return !rec.snapshots.empty(); }));
+  controller.start();
+  ASSERT_TRUE(waitUntil([&] { return !rec.errors.empty(); }, 60000)) << "reports: " << rec.reports.size();
+  ASSERT_EQ(rec.errors.size(), 1u);
+  const std::string error = rec.errors.front().toStdString();
+  EXPECT_NE(error.find("The drape diverged at t = "), std::string::npos) << error;
+  EXPECT_NE(error.find("the garment exploded: triangle "), std::string::npos) << error;
+  EXPECT_NE(error.find(" of panel '"), std::string::npos) << error;
+  ASSERT_TRUE(waitUntil([&] { return controller.runState() == qt::RunState::Paused; }));
+  ASSERT_FALSE(rec.reports.empty());
+  EXPECT_EQ(rec.reports.back().status, StepStatus::Diverged);
+  EXPECT_GT(rec.reports.back().maxStrain, 100.0);
+  const auto shown = controller.latestSnapshot();
+  ASSERT_TRUE(shown);
+  ASSERT_TRUE(shown->positions.allFinite());
+  ASSERT_GT(shown->triangleStrain.size(), 0);
+  EXPECT_LE(shown->triangleStrain.maxCoeff(), 100.0);
+}
+
 }  // namespace
 }  // namespace drape::test
