@@ -51,7 +51,7 @@ LagRun dropTablecloth(bool lagged, const std::string& cgTolerance) {
 }
 
 TEST(NewtonCoarseLag, LaggedFactorEndsWhereTheRefactorisedOneEndsWithFewerFactorisations) {
-  const LagRun ref = dropTablecloth(false, "1e-7");
+  const LagRun ref = dropTablecloth(false, "1e-6");
   const LagRun fresh = dropTablecloth(false, "1e-2");
   const LagRun lagged = dropTablecloth(true, "1e-2");
   for (const LagRun* r : {&ref, &fresh, &lagged}) {
@@ -64,13 +64,13 @@ TEST(NewtonCoarseLag, LaggedFactorEndsWhereTheRefactorisedOneEndsWithFewerFactor
   EXPECT_LT(lagged.factorizations, fresh.factorizations / 2);
   EXPECT_GT(lagged.factorizations, 0);
   EXPECT_LE(lagged.cgIterations, 1.25 * fresh.cgIterations);
-  // Where they end: the PCG tolerance alone (1e-2 against 1e-7) moves the fallen cloth by centimetres; lagging the
+  // Where they end: the PCG tolerance alone (1e-2 against 1e-6) moves the fallen cloth by centimetres; lagging the
   // coarse factor must move it by much less than that.
   const double cgEffect = (fresh.positions - ref.positions).rowwise().norm().maxCoeff();
   const double lagEffect = (lagged.positions - fresh.positions).rowwise().norm().maxCoeff();
   std::printf(
       "steps %d; factorisations %d refactorised, %d lagged (%d solves); PCG iterations %d / %d; largest "
-      "vertex distance: tolerance 1e-2 against 1e-7 %.2e m, lagged against refactorised %.2e m\n",
+      "vertex distance: tolerance 1e-2 against 1e-6 %.2e m, lagged against refactorised %.2e m\n",
       fresh.steps, fresh.factorizations, lagged.factorizations, lagged.solves, fresh.cgIterations, lagged.cgIterations,
       cgEffect, lagEffect);
   EXPECT_LT(lagEffect, 0.25 * cgEffect);

@@ -140,8 +140,9 @@ const std::vector<SettingSpec>& Settings::specs() {
        "full pipeline: the drape takes over once the 99th percentile of vertex speeds stays below this for 0.1 s",
        0, 100},
       // Newton drape (newton-drape-pizana; defaults from the paper)
-      {"solver.newton.tolerance", T::Number, "1e-3", "kg m/s", "Newton tolerance tau_n on the momentum residual", 1e-12,
-       1e3},
+      {"solver.newton.tolerance", T::Number, "1e-3", "kg m/s",
+       "Newton tolerance tau_n on the momentum residual (below 1e-6 the steps of a garment cannot reach it and split "
+       "down to nothing)", 1e-6, 1e3},
       {"solver.newton.max_iterations", T::Integer, "5", "", "Newton iterations per step attempt I_n", 1, 1000},
       {"solver.newton.line_search_iterations", T::Integer, "5", "", "backtracking halvings I_ls", 0, 60},
       {"solver.newton.h_max", T::Number, "1e-3", "s", "largest time step h_max", 1e-6, 0.1},
@@ -167,7 +168,9 @@ const std::vector<SettingSpec>& Settings::specs() {
        "a step below tau_n iterates on (up to max_iterations) while its residual's velocity error, as kinetic energy, "
        "is above the early-stop threshold: near rest tau_n alone accepts errors that keep the garment creeping"},
       {"solver.newton.early_stop_window", T::Number, "0.1", "s", "early stop: time the threshold must hold", 0, 10},
-      {"solver.cg.tolerance", T::Number, "1e-2", "", "PCG relative tolerance tau_cg", 1e-14, 0.9},
+      {"solver.cg.tolerance", T::Number, "1e-2", "",
+       "PCG relative tolerance tau_cg (below 1e-6 the single-precision preconditioner cannot reach it and Newton's steps "
+       "split down to nothing)", 1e-6, 0.9},
       {"solver.cg.max_iterations", T::Integer, "500", "", "PCG iteration cap", 1, 1e6},
       {"solver.cg.preconditioner", T::Choice, "block_jacobi", "", "PCG preconditioner", -1e300, 1e300,
        {"none", "diagonal", "block_jacobi", "incomplete_cholesky", "cholmod_direct"}},
