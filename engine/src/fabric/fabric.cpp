@@ -52,7 +52,7 @@ Fabric loadFabricFile(const std::filesystem::path& file) {
   f.density = bounded(j, "density", where, 1e-4, 10, "kg/m^2");
   f.friction = bounded(j, "friction", where, 0, 5, "");
   f.thickness = bounded(j, "thickness", where, 0, 0.05, "m");
-  f.damping = bounded(j, "damping", where, 0, 10, "");
+  f.damping = bounded(j, "damping", where, 0, 10, "s");
   if (j.contains("color")) {
     const auto& c = j.at("color");
     if (!c.is_array() || c.size() != 3 || !std::all_of(c.begin(), c.end(), [](const auto& x) { return x.is_number(); }))

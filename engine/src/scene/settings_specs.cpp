@@ -21,7 +21,7 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"fabric.density", T::Number, "", "kg/m^2", "override: areal density", 1e-4, 10},
       {"fabric.friction", T::Number, "", "", "override: Coulomb friction coefficient", 0, 5},
       {"fabric.thickness", T::Number, "", "m", "override: thickness (contact offset)", 0, 0.05},
-      {"fabric.damping", T::Number, "", "", "override: stretch/bend dissipation factor", 0, 10},
+      {"fabric.damping", T::Number, "", "s", "override: stretch dissipation beta_s of the drape", 0, 10},
       {"mesh.target_edge_length", T::Number, "0.01", "m", "target triangle edge length of the garment mesh", 1e-4,
        1.0},
       {"mesh.conforming_seams", T::Boolean, "true", "", "stitched edges sampled alike and sewn vertex to vertex; "
@@ -210,7 +210,6 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"solver.newton.batched_gradients", T::Boolean, "true", "",
        "membrane and closed-form bending gradient passes take 8 stencils at a time (vectorised arithmetic)"},
       {"solver.damping.air", T::Number, "5", "1/s", "air drag alpha", 0, 1e3},
-      {"solver.damping.stretch", T::Number, "1e-2", "s", "stretch dissipation beta_s", 0, 10},
       {"solver.damping.bend", T::Number, "1e-1", "s", "bending dissipation beta_b", 0, 10},
       {"solver.stitch_stiffness", T::Number, "1e4", "N/m", "zero-length stitch spring stiffness", 0, 1e9},
       {"solver.pin_stiffness", T::Number, "1e4", "N/m", "pin spring stiffness", 0, 1e9},

@@ -60,7 +60,8 @@ newton::ClothModel buildClothModel(const Scene& scene, const Garment& garment, c
   return model;
 }
 
-newton::NewtonSettings newtonSettingsFrom(const Settings& s) {
+newton::NewtonSettings newtonSettingsFrom(const Scene& scene) {
+  const Settings& s = scene.settings;
   newton::NewtonSettings n;
   n.tauNewton = s.number("solver.newton.tolerance");
   n.maxNewtonIterations = s.integer("solver.newton.max_iterations");
@@ -103,7 +104,10 @@ newton::NewtonSettings newtonSettingsFrom(const Settings& s) {
                                                              : newton::Preconditioner::BlockJacobi;
   }
   n.alpha = s.number("solver.damping.air");
-  n.betaStretch = s.number("solver.damping.stretch");
+  // The fabric's damping is the stretch dissipation beta_s (assets/fabrics/README.md); with panels of several
+  // fabrics, the largest (as friction: one coefficient for the scene).
+  n.betaStretch = scene.fabric.damping;
+  for (const auto& [panel, fabric] : scene.panelFabrics) n.betaStretch = std::max(n.betaStretch, fabric.damping);
   n.betaBend = s.number("solver.damping.bend");
   n.stitchStiffness = s.number("solver.stitch_stiffness");
   n.pinStiffness = s.number("solver.pin_stiffness");

@@ -10,7 +10,8 @@ namespace drape {
 
 newton::ClothModel buildClothModel(const Scene& scene, const Garment& garment, const std::vector<int>& pinned);
 
-newton::NewtonSettings newtonSettingsFrom(const Settings& settings);
+// The drape's settings from the scene's solver.* keys, its stretch dissipation beta_s from the fabric's damping.
+newton::NewtonSettings newtonSettingsFrom(const Scene& scene);
 
 // The preview solver's settings from the scene's solver.preview.* keys (friction: the largest coefficient of the
 // scene's fabrics, as the drape).

@@ -271,7 +271,7 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
   }
   model.startTime = time;
   m_solver->contact = makeContactTerms(m_scene, m_garment, m_solver->collider);
-  newton::NewtonSettings settings = newtonSettingsFrom(m_scene.settings);
+  newton::NewtonSettings settings = newtonSettingsFrom(m_scene);
   // The relaxation settles a placed garment (seams apart, pre-stretch); the preview has already done that.
   // Its time steps may be longer: it settles a garment already near rest, whose result they barely move (docs/
   // BENCHMARKS.md, "The drape after the preview steps 3 ms"). They start at h_max and grow: the state the preview

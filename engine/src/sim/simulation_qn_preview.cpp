@@ -28,7 +28,7 @@ void Simulation::startQuasiNewtonPreview(const ResumeState* from) {
   m_restSince = -1.0;
   const Settings& s = m_scene.settings;
   newton::ClothModel model = m_solver->model;
-  newton::NewtonSettings settings = newtonSettingsFrom(s);
+  newton::NewtonSettings settings = newtonSettingsFrom(m_scene);
   settings.hMax = s.number("solver.preview.qn_time_step");
   // The relaxation (velocities zeroed, stiffness ramped) as the drape's, its first steps a quarter of the preview's
   // (growing by the time-splitting rule): the seams close with fewer overstretched triangles than from the full step
@@ -70,7 +70,7 @@ void Simulation::handOverToDrape() {
   m_solver->previewTime = time();
   newton::NewtonSolver& solver = *m_solver->newton;
   solver.setQuasiNewton(nullptr);
-  const newton::NewtonSettings drape = newtonSettingsFrom(m_scene.settings);
+  const newton::NewtonSettings drape = newtonSettingsFrom(m_scene);
   solver.settings().hMax = drape.hMax * m_scene.settings.number("solver.newton.h_max_factor_after_preview");
   // Newton starts at its own h_max and grows from there, as after the projective preview: at the preview's step the
   // first Newton steps of a garment still moving can fail to converge and split down to 0.1 ms.

@@ -18,7 +18,7 @@ struct Fabric {
   double density = 0.12;        // kg/m^2, areal density
   double friction = 0.4;        // Coulomb coefficient against bodies and itself
   double thickness = 3e-4;      // m, used as the contact offset
-  double damping = 1e-2;        // dimensionless stretch/bend dissipation factor
+  double damping = 1e-2;        // s, the drape's stretch dissipation beta_s
   Eigen::Vector3f color = Eigen::Vector3f(0.8f, 0.8f, 0.8f);  // linear RGB for rendering
 };
 
