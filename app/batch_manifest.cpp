@@ -1,6 +1,7 @@
 #include "batch_manifest.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -169,6 +170,8 @@ BatchManifest loadBatchManifest(const fs::path& file) {
   if (jobs.empty()) reader.fail("jobs", "the manifest has no jobs (give 'jobs' or a 'grid')");
   std::map<std::string, std::string> seen;  // id -> element
   for (const auto& [job, element] : jobs) {
+    if (job.id.size() > 200)  // a folder name; file systems allow 255 bytes
+      reader.fail(element, "job id '" + job.id.substr(0, 40) + "...' is longer than 200 characters (give it an 'id')");
     const auto [it, fresh] = seen.emplace(job.id, element);
     if (!fresh)
       reader.fail(element, "job id '" + job.id + "' is also the id of " + it->second + " (give the jobs distinct ids)");
