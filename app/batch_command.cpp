@@ -124,7 +124,16 @@ int runBatch(const CliOptions& options, std::ostream& out) {
   std::vector<json> rows(total);                                  // this run's rows
   std::map<pid_t, std::pair<size_t, Clock::time_point>> running;  // pid -> (job, start)
   size_t next = 0, finishedNow = 0;
-  int succeeded = static_cast<int>(total - pending.size()), failed = 0;
+  // The jobs finished before count as their rows say (a drape whose quality verdict failed is finished, not done).
+  int succeeded = 0, failed = 0;
+  for (size_t i = 0, p = 0; i < total; ++i) {
+    if (p < pending.size() && pending[p] == i) {
+      ++p;
+      continue;
+    }
+    const json row = recordedBatchRow(files[i]);
+    (row.is_object() && rowSucceeded(row) ? succeeded : failed) += 1;
+  }
   auto report = [&](size_t i) {
     ++finishedNow;
     (rowSucceeded(rows[i]) ? succeeded : failed) += 1;

@@ -147,7 +147,7 @@ json finishBatchJob(const BatchManifest& manifest, const BatchJob& job, const Ba
   add("png", files.png);
   add("stats", files.stats);
   const json row = summaryRow(job, outcome, outputs);
-  writeFileAtomically(rowSucceeded(row) ? files.done : files.failed, row.dump(2) + "\n");
+  writeFileAtomically(rowFinished(row) ? files.done : files.failed, row.dump(2) + "\n");
   return row;
 }
 

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "drape/io/atomic_file.h"
+#include "quality_output.h"
 
 namespace drape::app {
 namespace {
@@ -103,6 +104,11 @@ std::string statusText(const json& row) {
 
 bool rowSucceeded(const json& row) {
   return row.at("exit_status").get<int>() == 0;
+}
+
+bool rowFinished(const json& row) {
+  const int exit = row.at("exit_status").get<int>();
+  return exit == 0 || exit == kQualityFailedExit;
 }
 
 void writeBatchSummary(const std::vector<json>& rows, const std::filesystem::path& outDir) {

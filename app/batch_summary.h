@@ -31,6 +31,9 @@ std::string statusText(const nlohmann::json& row);
 
 // True when the row is of a job that succeeded (exit status 0).
 bool rowSucceeded(const nlohmann::json& row);
+// True when the row is of a job that ran to its end: succeeded, or drape written with its quality verdict failed
+// (exit status 4, marked in the row). A rerun of the batch skips it, as a drape is deterministic.
+bool rowFinished(const nlohmann::json& row);
 
 // Writes summary.json (an array of the rows) and summary.csv (a header line and one line per row) atomically.
 void writeBatchSummary(const std::vector<nlohmann::json>& rows, const std::filesystem::path& outDir);

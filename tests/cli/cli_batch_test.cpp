@@ -154,8 +154,11 @@ TEST(CliBatch, OnlyTheOutputsAskedForAreKept) {
 }
 
 TEST(CliBatch, LocalBatchRecordsTheBadJobAndARerunRedoesOnlyUnfinishedJobs) {
-  const json manifest = tableclothBatch({json::array({"fabric.density=0.1"}), json::array({"fabric.density=0.2"}),
-                                         json::array({"fabric.density=-1"}), json::array({"fabric.density=0.3"})});
+  // set2 is refused at load (exit 1); set3's drape fails its quality verdict (no strain passes: exit 4), which still
+  // finishes the job.
+  const json manifest =
+      tableclothBatch({json::array({"fabric.density=0.1"}), json::array({"fabric.density=0.2"}),
+                       json::array({"fabric.density=-1"}), json::array({"fabric.density=0.3", "quality.max_strain=0"})});
   const fs::path file = writeManifest("local.json", manifest), outDir = kScratch / "out_local";
   fs::remove_all(outDir);
   const std::string command = "--batch " + quote(file.string()) + " -o " + quote(outDir.string()) + " --jobs 2";
@@ -163,8 +166,9 @@ TEST(CliBatch, LocalBatchRecordsTheBadJobAndARerunRedoesOnlyUnfinishedJobs) {
   ASSERT_EQ(r.exitCode, 5) << r.err << r.out;  // some jobs failed
   auto progress = progressLines(r.out);
   ASSERT_EQ(progress.size(), 4u) << r.out;
-  EXPECT_EQ(progress.back().rfind("[3/1/4] ", 0), 0u) << r.out;
+  EXPECT_EQ(progress.back().rfind("[2/2/4] ", 0), 0u) << r.out;
   EXPECT_TRUE(mentions(progress, "last: tablecloth__set2 Failed (exit 1)")) << r.out;
+  EXPECT_TRUE(mentions(progress, "last: tablecloth__set3 MaxSimTime (exit 4: quality failed)")) << r.out;
 
   const json rows = json::parse(readWhole(outDir / "summary.json"));
   ASSERT_EQ(rows.size(), 4u);
@@ -179,9 +183,10 @@ TEST(CliBatch, LocalBatchRecordsTheBadJobAndARerunRedoesOnlyUnfinishedJobs) {
       EXPECT_TRUE(fs::exists(job / "failed.json"));
       EXPECT_FALSE(fs::exists(job / "done.json"));
     } else {
+      const bool strained = id == "tablecloth__set3";
       EXPECT_EQ(row.at("status"), "MaxSimTime") << row;
-      EXPECT_EQ(row.at("exit_status"), 0) << row;
-      EXPECT_EQ(row.at("quality_passed"), true) << row;
+      EXPECT_EQ(row.at("exit_status"), strained ? 4 : 0) << row;
+      EXPECT_EQ(row.at("quality_passed"), !strained) << row;
       EXPECT_EQ(row.at("at_rest"), false) << row;
       EXPECT_GT(row.at("steps").get<int>(), 0) << row;
       EXPECT_EQ(row.at("inside_vertices"), 0) << row;
@@ -203,7 +208,8 @@ TEST(CliBatch, LocalBatchRecordsTheBadJobAndARerunRedoesOnlyUnfinishedJobs) {
   EXPECT_GE(byte(16) << 24 | byte(17) << 16 | byte(18) << 8 | byte(19), 4u * 256u);
 #endif
 
-  // Again, with one good job's done.json gone: that job and the failed one run, the other two are left alone.
+  // Again, with one good job's done.json gone: that job and the failed one run, the other two (the one whose quality
+  // verdict failed among them) are left alone.
   const auto before0 = fs::last_write_time(outDir / "tablecloth__set0" / "done.json");
   const auto before3 = fs::last_write_time(outDir / "tablecloth__set3" / "done.json");
   fs::remove(outDir / "tablecloth__set1" / "done.json");
@@ -214,7 +220,7 @@ TEST(CliBatch, LocalBatchRecordsTheBadJobAndARerunRedoesOnlyUnfinishedJobs) {
   ASSERT_EQ(progress.size(), 2u) << r.out;
   EXPECT_TRUE(mentions(progress, "last: tablecloth__set1 MaxSimTime")) << r.out;
   EXPECT_TRUE(mentions(progress, "last: tablecloth__set2 Failed")) << r.out;
-  EXPECT_EQ(progress.back().rfind("[3/1/4] ", 0), 0u) << r.out;
+  EXPECT_EQ(progress.back().rfind("[2/2/4] ", 0), 0u) << r.out;
   EXPECT_TRUE(fs::exists(outDir / "tablecloth__set1" / "done.json"));
   EXPECT_EQ(fs::last_write_time(outDir / "tablecloth__set0" / "done.json"), before0);
   EXPECT_EQ(fs::last_write_time(outDir / "tablecloth__set3" / "done.json"), before3);
