@@ -49,6 +49,12 @@ std::string usageText() {
                                           nothing inside the body (exit 1 when a cell fails)
   drape --make-avatar MEASUREMENTS.(yaml|json) -o AVATAR.(obj|glb)
                                           a smooth watertight mannequin from body measurements (cm)
+  drape --batch MANIFEST.json -o OUTDIR [--jobs N] [--list]
+                                          every job of a batch manifest (docs/FORMATS.md), N at a time (default:
+                                          the core count), each in OUTDIR/<id>/; then OUTDIR/summary.csv,
+                                          summary.json and contact_sheet.png. Jobs with a done.json are skipped, so
+                                          the same command finishes a killed batch. --list prints the job ids only.
+                                          Progress: [done/failed/total]. Exit 5 when some jobs failed
   drape --list-settings                   every setting with its default, unit and meaning
   drape --list-fabrics                    the fabric presets
   drape --help | --version
@@ -105,6 +111,16 @@ CliOptions parseCommandLine(int argc, char** argv) {
     } else if (a == "--bench") {
       setMode(Mode::Bench, a);
       o.scene.input = value(i, a);
+    } else if (a == "--batch") {
+      setMode(Mode::Batch, a);
+      o.batch = value(i, a);
+    } else if (a == "--jobs") {
+      const std::string s = value(i, a);
+      const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), o.jobs);
+      if (error != std::errc() || end != s.data() + s.size() || o.jobs < 1 || o.jobs > 1024)
+        throw InputError(a + ": '" + s + "' is not a number of jobs from 1 to 1024");
+    } else if (a == "--list") {
+      o.list = true;
     } else if (a == "--sweep") {
       o.sweeps.push_back(value(i, a));
     } else if (a == "--extremes") {
@@ -180,6 +196,8 @@ CliOptions parseCommandLine(int argc, char** argv) {
                                  : o.mode == Mode::Simulate ? "--simulate"
                                                             : "--make-avatar") +
                      ": missing -o OUTPUT");
+  if (o.mode == Mode::Batch && o.output.empty() && !o.list) throw InputError("--batch: missing -o OUTDIR");
+  if ((o.jobs > 0 || o.list) && o.mode != Mode::Batch) throw InputError("--jobs, --list: only with --batch");
   if (o.extremes && (o.mode != Mode::Bench || !o.sweeps.empty()))
     throw InputError("--extremes: only with --bench, and not with --sweep");
   if (!o.from.empty() && o.mode != Mode::Simulate && o.mode != Mode::Render)

@@ -16,6 +16,10 @@ int runBench(const CliOptions& options, std::ostream& out);
 // --bench --extremes: the extremes grid (drape/sim/extremes_grid.h) on the scene, in --solver's stage or all three.
 int runExtremes(const CliOptions& options, std::ostream& out);
 int runMakeAvatar(const CliOptions& options, std::ostream& out);
+// --batch MANIFEST -o OUTDIR: every job of the manifest in child processes (batch_command.cpp); --list: the job list.
+int runBatch(const CliOptions& options, std::ostream& out);
+// Exit status of a batch in which some jobs failed (the summary and contact sheet are still written).
+constexpr int kBatchJobsFailedExit = 5;
 
 // The scene's camera settings: a preset view, or an explicit eye (and target, up) when camera.eye is set.
 struct SceneCamera {

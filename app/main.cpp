@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
       case Mode::Render: return runRender(options, std::cout);
       case Mode::Bench: return runBench(options, std::cout);
       case Mode::MakeAvatar: return runMakeAvatar(options, std::cout);
+      case Mode::Batch: return runBatch(options, std::cout);
       case Mode::Gui: return runGui(argc, argv, options);
     }
   } catch (const drape::InputError& e) {

@@ -1,0 +1,231 @@
+// drape --batch through the executable: a manifest's grid and jobs expand to the expected sorted ids, bad manifests are
+// refused with one line before any job runs, and a small local batch records its one bad job, writes the summary and
+// contact sheet, and on a second run redoes only the jobs without done.json.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "run_process.h"
+#include "shared_data.h"
+
+namespace drape::test {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const fs::path kScratch = testOutputDir() / "cli_batch";
+
+ProcessResult drape(const std::string& args) {
+  return runProcess(quote(DRAPE_EXECUTABLE) + " " + args + " </dev/null", kScratch);
+}
+
+// Writes a manifest into the scratch folder and returns its path.
+fs::path writeManifest(const std::string& name, const json& manifest) {
+  fs::create_directories(kScratch);
+  const fs::path file = kScratch / name;
+  std::ofstream(file) << manifest.dump(2);
+  return file;
+}
+
+// An asset as the manifests write it: relative to the scratch folder, where they are.
+std::string relativeAsset(const std::string& relative) {
+  return fs::relative(assetsDir() / relative, kScratch).string();
+}
+
+std::vector<std::string> linesOf(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+// The progress lines ("[done/failed/total] ...") of a batch's output.
+std::vector<std::string> progressLines(const std::string& out) {
+  std::vector<std::string> lines;
+  for (const auto& line : linesOf(out))
+    if (line.rfind("[", 0) == 0) lines.push_back(line);
+  return lines;
+}
+
+bool mentions(const std::vector<std::string>& lines, const std::string& text) {
+  for (const auto& line : lines)
+    if (line.find(text) != std::string::npos) return true;
+  return false;
+}
+
+// The tablecloth with the given set variations, coarse and short (well under a second per job).
+json tableclothBatch(const json& sets) {
+  return {{"max_sim_time", 0.1},
+          {"set", {"mesh.target_edge_length=0.1", "quality.require_rest=false"}},
+          {"grid", {{"scenes", {relativeAsset("scenes/tablecloth.json")}}, {"sets", sets}}}};
+}
+
+TEST(CliBatch, GridAndJobsExpandToStableSortedIds) {
+  const json manifest = {
+      {"grid",
+       {{"scenes", {relativeAsset("scenes/tablecloth.json"), relativeAsset("patterns/hanging_cloth.json")}},
+        {"fabrics", {"denim", "silk_charmeuse"}},
+        {"sets", {json::array({"fabric.density=0.1"}), json::array()}}}},
+      {"jobs",
+       {{{"scene", relativeAsset("scenes/tablecloth.json")}, {"id", "custom"}},
+        {{"scene", relativeAsset("scenes/tablecloth.json")},
+         {"avatar", relativeAsset("avatars/female.yaml")},
+         {"set", {"mesh.target_edge_length=0.1"}}}}}};
+  const auto r = drape("--batch " + quote(writeManifest("grid.json", manifest).string()) + " --list");
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  std::vector<std::string> ids;
+  for (const auto& line : linesOf(r.out)) ids.push_back(line.substr(0, line.find('\t')));
+  const std::vector<std::string> expected = {"custom",
+                                             "hanging_cloth__denim__set0",
+                                             "hanging_cloth__denim__set1",
+                                             "hanging_cloth__silk_charmeuse__set0",
+                                             "hanging_cloth__silk_charmeuse__set1",
+                                             "tablecloth__denim__set0",
+                                             "tablecloth__denim__set1",
+                                             "tablecloth__female__mesh.target_edge_length_0.1",
+                                             "tablecloth__silk_charmeuse__set0",
+                                             "tablecloth__silk_charmeuse__set1"};
+  EXPECT_EQ(ids, expected) << r.out;
+  // The line of a job names its inputs as the manifest wrote them.
+  EXPECT_NE(r.out.find("tablecloth__denim__set0\t" + relativeAsset("scenes/tablecloth.json") +
+                       "\t-\tdenim\tfabric.density=0.1\n"),
+            std::string::npos)
+      << r.out;
+}
+
+TEST(CliBatch, BadManifestsAreRefusedWithOneLineBeforeAnyJobRuns) {
+  const std::string cloth = relativeAsset("scenes/tablecloth.json");
+  const json grid = {{"scenes", {cloth}}};
+  struct Case {
+    std::string name;
+    json manifest;
+    std::string element;  // what follows "MANIFEST: "
+  };
+  const std::vector<Case> cases = {
+      {"unknown_key", {{"grid", grid}, {"solvr", "drape"}}, "solvr: unknown key"},
+      {"unknown_grid_key", {{"grid", {{"scenes", {cloth}}, {"fabric", {"denim"}}}}}, "grid.fabric: unknown key"},
+      {"missing_file", {{"grid", {{"scenes", {"no_such_scene.json"}}}}}, "grid.scenes[0]: file not found"},
+      {"empty_axis", {{"grid", {{"scenes", json::array()}}}}, "grid.scenes: empty list"},
+      {"empty_grid", {{"grid", json::object()}}, "grid.scenes: missing"},
+      {"no_jobs", {{"solver", "drape"}}, "jobs: the manifest has no jobs"},
+      {"duplicate_ids",
+       {{"jobs", {{{"scene", cloth}, {"id", "same"}}, {{"scene", cloth}, {"id", "same"}}}}},
+       "jobs[1]: job id 'same' is also the id of jobs[0]"},
+      {"duplicate_derived_ids", {{"grid", grid}, {"jobs", {{{"scene", cloth}}}}}, "jobs[0]: job id 'tablecloth'"},
+      {"wrong_type", {{"grid", grid}, {"max_sim_time", "1"}}, "max_sim_time: must be a positive number"},
+      {"unknown_fabric", {{"grid", {{"scenes", {cloth}}, {"fabrics", {"tweed"}}}}}, "grid.fabrics[0]: unknown fabric"},
+      {"unknown_setting", {{"grid", grid}, {"set", {"mesh.edge=0.1"}}}, "set[0]: unknown setting 'mesh.edge'"},
+      {"bad_output", {{"grid", grid}, {"outputs", {"obj", "fbx"}}}, "outputs[1]: 'fbx' is not one of"}};
+  for (const Case& c : cases) {
+    const fs::path file = writeManifest("bad_" + c.name + ".json", c.manifest);
+    const fs::path outDir = kScratch / ("out_bad_" + c.name);
+    fs::remove_all(outDir);
+    const auto r = drape("--batch " + quote(file.string()) + " -o " + quote(outDir.string()));
+    EXPECT_EQ(r.exitCode, 1) << c.name << ": " << r.err << r.out;
+    EXPECT_EQ(linesOf(r.err).size(), 1u) << c.name << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("drape: " + file.string() + ": " + c.element, 0), 0u) << c.name << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << c.name << ": " << r.out;
+    EXPECT_FALSE(fs::exists(outDir)) << c.name;
+  }
+}
+
+TEST(CliBatch, OnlyTheOutputsAskedForAreKept) {
+  json manifest = tableclothBatch(json::array({json::array()}));  // one set: no extra settings
+  manifest["solver"] = "none";
+  manifest["outputs"] = {"glb", "stats"};
+  const fs::path outDir = kScratch / "out_glb";
+  fs::remove_all(outDir);
+  const auto r =
+      drape("--batch " + quote(writeManifest("glb.json", manifest).string()) + " -o " + quote(outDir.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  const fs::path job = outDir / "tablecloth__set0";
+  EXPECT_TRUE(fs::exists(job / "garment.glb"));
+  EXPECT_TRUE(fs::exists(job / "stats.json"));
+  EXPECT_FALSE(fs::exists(job / "garment.obj"));
+  EXPECT_FALSE(fs::exists(job / "garment.png"));
+  const json row = json::parse(readWhole(outDir / "summary.json")).at(0);
+  EXPECT_EQ(row.at("glb"), "tablecloth__set0/garment.glb");
+  EXPECT_EQ(row.at("obj"), "");
+  EXPECT_EQ(row.at("status"), "Placed");
+}
+
+TEST(CliBatch, LocalBatchRecordsTheBadJobAndARerunRedoesOnlyUnfinishedJobs) {
+  // set2 is refused at load (exit 1); set3's drape fails its quality verdict (no strain passes: exit 4), which still
+  // finishes the job.
+  const json manifest =
+      tableclothBatch({json::array({"fabric.density=0.1"}), json::array({"fabric.density=0.2"}),
+                       json::array({"fabric.density=-1"}), json::array({"fabric.density=0.3", "quality.max_strain=0"})});
+  const fs::path file = writeManifest("local.json", manifest), outDir = kScratch / "out_local";
+  fs::remove_all(outDir);
+  const std::string command = "--batch " + quote(file.string()) + " -o " + quote(outDir.string()) + " --jobs 2";
+  auto r = drape(command);
+  ASSERT_EQ(r.exitCode, 5) << r.err << r.out;  // some jobs failed
+  auto progress = progressLines(r.out);
+  ASSERT_EQ(progress.size(), 4u) << r.out;
+  EXPECT_EQ(progress.back().rfind("[2/2/4] ", 0), 0u) << r.out;
+  EXPECT_TRUE(mentions(progress, "last: tablecloth__set2 Failed (exit 1)")) << r.out;
+  EXPECT_TRUE(mentions(progress, "last: tablecloth__set3 MaxSimTime (exit 4: quality failed)")) << r.out;
+
+  const json rows = json::parse(readWhole(outDir / "summary.json"));
+  ASSERT_EQ(rows.size(), 4u);
+  for (const json& row : rows) {
+    const std::string id = row.at("id");
+    const fs::path job = outDir / id;
+    if (id == "tablecloth__set2") {
+      EXPECT_EQ(row.at("status"), "Failed");
+      EXPECT_EQ(row.at("exit_status"), 1);
+      EXPECT_NE(row.at("error").get<std::string>().find("fabric.density"), std::string::npos) << row;
+      EXPECT_EQ(row.at("set"), "fabric.density=-1");
+      EXPECT_TRUE(fs::exists(job / "failed.json"));
+      EXPECT_FALSE(fs::exists(job / "done.json"));
+    } else {
+      const bool strained = id == "tablecloth__set3";
+      EXPECT_EQ(row.at("status"), "MaxSimTime") << row;
+      EXPECT_EQ(row.at("exit_status"), strained ? 4 : 0) << row;
+      EXPECT_EQ(row.at("quality_passed"), !strained) << row;
+      EXPECT_EQ(row.at("at_rest"), false) << row;
+      EXPECT_GT(row.at("steps").get<int>(), 0) << row;
+      EXPECT_EQ(row.at("inside_vertices"), 0) << row;
+      EXPECT_TRUE(fs::exists(outDir / row.at("obj").get<std::string>())) << row;
+      EXPECT_TRUE(fs::exists(outDir / row.at("png").get<std::string>())) << row;
+      EXPECT_EQ(json::parse(readWhole(job / "done.json")), row);
+    }
+  }
+  const auto csv = linesOf(readWhole(outDir / "summary.csv"));
+  ASSERT_EQ(csv.size(), 5u);
+  EXPECT_EQ(csv[0].rfind("id,scene,avatar,fabric,set,status,exit_status,error,", 0), 0u) << csv[0];
+  EXPECT_EQ(csv[3].rfind("tablecloth__set2,", 0), 0u) << csv[3];
+#ifdef DRAPE_TEST_WITH_GUI
+  // A PNG whose width (IHDR, big-endian at byte 16) holds the four 256-pixel thumbnails side by side.
+  const std::string sheet = readWhole(outDir / "contact_sheet.png");
+  ASSERT_GT(sheet.size(), 24u);
+  EXPECT_EQ(sheet.substr(1, 3), "PNG");
+  const auto byte = [&](int i) { return static_cast<unsigned>(static_cast<unsigned char>(sheet[i])); };
+  EXPECT_GE(byte(16) << 24 | byte(17) << 16 | byte(18) << 8 | byte(19), 4u * 256u);
+#endif
+
+  // Again, with one good job's done.json gone: that job and the failed one run, the other two (the one whose quality
+  // verdict failed among them) are left alone.
+  const auto before0 = fs::last_write_time(outDir / "tablecloth__set0" / "done.json");
+  const auto before3 = fs::last_write_time(outDir / "tablecloth__set3" / "done.json");
+  fs::remove(outDir / "tablecloth__set1" / "done.json");
+  r = drape(command);
+  ASSERT_EQ(r.exitCode, 5) << r.err << r.out;
+  EXPECT_NE(r.out.find("4 jobs, 2 finished before; running 2"), std::string::npos) << r.out;
+  progress = progressLines(r.out);
+  ASSERT_EQ(progress.size(), 2u) << r.out;
+  EXPECT_TRUE(mentions(progress, "last: tablecloth__set1 MaxSimTime")) << r.out;
+  EXPECT_TRUE(mentions(progress, "last: tablecloth__set2 Failed")) << r.out;
+  EXPECT_EQ(progress.back().rfind("[2/2/4] ", 0), 0u) << r.out;
+  EXPECT_TRUE(fs::exists(outDir / "tablecloth__set1" / "done.json"));
+  EXPECT_EQ(fs::last_write_time(outDir / "tablecloth__set0" / "done.json"), before0);
+  EXPECT_EQ(fs::last_write_time(outDir / "tablecloth__set3" / "done.json"), before3);
+  EXPECT_EQ(json::parse(readWhole(outDir / "summary.json")).size(), 4u);
+}
+
+}  // namespace
+}  // namespace drape::test
