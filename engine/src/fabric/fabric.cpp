@@ -39,9 +39,11 @@ Fabric loadFabricFile(const std::filesystem::path& file) {
   static const char* known[] = {"name",     "stretch_warp", "stretch_weft", "shear",     "bend_warp", "bend_weft",
                                 "density",  "friction",     "thickness",    "damping",   "color",     "sources",
                                 "description"};
-  for (const auto& [key, value] : j.items())
+  for (const auto& item : j.items()) {
+    const std::string& key = item.key();
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
       throw InputError(where + ": unknown field '" + key + "'");
+  }
   Fabric f;
   f.name = j.contains("name") ? json::text(j, "name", where) : file.stem().string();
   f.stretchWarp = bounded(j, "stretch_warp", where, 1e-3, 1e7, "N/m");
