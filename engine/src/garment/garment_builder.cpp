@@ -192,7 +192,9 @@ Garment buildGarment(const Pattern& pattern, const MeshingOptions& options, Diag
 
   // Target edge length per panel, metres.
   std::vector<double> panelTarget(pattern.panels.size(), target);
-  for (const auto& [name, length] : options.panelTargetEdgeLength) {
+  for (const auto& entry : options.panelTargetEdgeLength) {
+    const std::string& name = entry.first;
+    const double length = entry.second;
     const auto it = std::find_if(pattern.panels.begin(), pattern.panels.end(),
                                  [&name](const Panel& panel) { return panel.name == name; });
     std::ostringstream msg;
