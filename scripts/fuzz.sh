@@ -20,7 +20,4 @@ cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_
   -DCMAKE_CXX_COMPILER=clang++-14 -DDRAPE_FUZZ=ON -DDRAPE_BUILD_GUI=OFF -DDRAPE_BUILD_TESTS=OFF "$@"
 cmake --build "$BUILD_DIR" -j "$(nproc)" --target drape_fuzz_pattern drape_fuzz_scene drape_fuzz_measurements \
   drape_fuzz_avatar
-export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
-export LSAN_OPTIONS="suppressions=$PWD/scripts/sanitize.supp:print_suppressions=0"
-export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 ctest --test-dir "$BUILD_DIR" -L fuzz_slow --output-on-failure -j "$(nproc)"

@@ -76,5 +76,19 @@ TEST(CliHostileInput, FabricWithNoStretchStiffness) {
                      "setting 'fabric.stretch_weft': 0 is out of range [0.001, 1e+07] N/m");
 }
 
+// Found by the fuzz harnesses (fuzz/): a PLY header without its end_header line kept assimp reading for minutes, and a
+// YAML measurement file with a list as a key ended in an internal error.
+TEST(CliHostileInput, PlyAvatarWithoutEndOfHeader) {
+  expectOneLineError(drape("--info " + quote((assetsDir() / "scenes/tablecloth.json").string()) + " --avatar " +
+                           bad("avatar_ply_without_end_header.ply")),
+                     "avatar_ply_without_end_header.ply: PLY header: no 'end_header' line in its first 65536 bytes");
+}
+
+TEST(CliHostileInput, MeasurementsWithAListAsKey) {
+  expectOneLineError(drape("--make-avatar " + bad("measurements_list_as_key.yaml") + " -o " +
+                           quote((kScratch / "list_key.obj").string())),
+                     "measurements_list_as_key.yaml: a key that is not a name (a list or a map)");
+}
+
 }  // namespace
 }  // namespace drape::test

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "avatar/obj_scan.h"
+#include "avatar/ply_header.h"
 #include "drape/core/input_error.h"
 #include "drape/geometry/mesh_orientation.h"
 
@@ -72,6 +73,10 @@ const aiScene* readScene(Assimp::Importer& importer, const std::filesystem::path
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   // Read without post-processing first: a polygon with very many corners is refused before triangulation, whose
   // ear clipping takes time quadratic or worse in the corner count (a 100k-corner face ran for minutes).
+  if (lowerExtension(file) == ".ply") {
+    const std::string problem = detail::plyHeaderProblem(file);
+    if (!problem.empty()) fail(file, problem);
+  }
   const aiScene* scene = importer.ReadFile(file.string(), 0);
   if (scene) {
     refuseLargePolygons(*scene, file);

@@ -34,6 +34,7 @@ RawMeasurements readYaml(const std::filesystem::path& file) {
   if (!body.IsMap()) fail(file, "expected a map of body measurements under 'body'");
   RawMeasurements raw;
   for (const auto& entry : body) {
+    if (!entry.first.IsScalar()) fail(file, "a key that is not a name (a list or a map)");
     const std::string key = entry.first.as<std::string>();
     if (!entry.second.IsScalar()) continue;
     try {
