@@ -73,10 +73,8 @@ const aiScene* readScene(Assimp::Importer& importer, const std::filesystem::path
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   // Read without post-processing first: a polygon with very many corners is refused before triangulation, whose
   // ear clipping takes time quadratic or worse in the corner count (a 100k-corner face ran for minutes).
-  if (lowerExtension(file) == ".ply") {
-    const std::string problem = detail::plyHeaderProblem(file);
-    if (!problem.empty()) fail(file, problem);
-  }
+  const std::string plyProblem = detail::plyHeaderProblem(file, lowerExtension(file) == ".ply");
+  if (!plyProblem.empty()) fail(file, plyProblem);
   const aiScene* scene = importer.ReadFile(file.string(), 0);
   if (scene) {
     refuseLargePolygons(*scene, file);

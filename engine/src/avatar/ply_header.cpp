@@ -5,7 +5,7 @@
 
 namespace drape::detail {
 
-std::string plyHeaderProblem(const std::filesystem::path& file) {
+std::string plyHeaderProblem(const std::filesystem::path& file, bool namedPly) {
   std::ifstream in(file, std::ios::binary);
   if (!in) return "";  // assimp says why it cannot open it
   std::error_code ec;
@@ -16,7 +16,7 @@ std::string plyHeaderProblem(const std::filesystem::path& file) {
   while (read < kMaxPlyHeaderBytes && std::getline(in, line)) {
     read += line.size() + 1;
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (first && line != "ply") return "PLY header: the first line is not 'ply'";
+    if (first && line != "ply") return namedPly ? "PLY header: the first line is not 'ply'" : "";
     first = false;
     if (line == "end_header") return "";
     std::istringstream words(line);
