@@ -76,12 +76,20 @@ TEST(CliHostileInput, FabricWithNoStretchStiffness) {
                      "setting 'fabric.stretch_weft': 0 is out of range [0.001, 1e+07] N/m");
 }
 
-// Found by the fuzz harnesses (fuzz/): a PLY header without its end_header line kept assimp reading for minutes, and a
-// YAML measurement file with a list as a key ended in an internal error.
+// Found by the fuzz harnesses (fuzz/): a PLY header without its end_header line kept assimp reading for minutes, a PLY
+// face without corners aborted the process in assimp, and a YAML measurement file with a list as a key ended in an
+// internal error.
 TEST(CliHostileInput, PlyAvatarWithoutEndOfHeader) {
   expectOneLineError(drape("--info " + quote((assetsDir() / "scenes/tablecloth.json").string()) + " --avatar " +
                            bad("avatar_ply_without_end_header.ply")),
                      "avatar_ply_without_end_header.ply: PLY header: no 'end_header' line in its first 65536 bytes");
+}
+
+TEST(CliHostileInput, PlyAvatarWhoseFaceHasNoVertices) {
+  // Two PLY headers run together: assimp reads a face without corners, and its triangulation aborted the process.
+  expectOneLineError(drape("--info " + quote((assetsDir() / "scenes/tablecloth.json").string()) + " --avatar " +
+                           bad("avatar_ply_face_without_vertices.ply")),
+                     "avatar_ply_face_without_vertices.ply: mesh 0 face 0 has no vertices");
 }
 
 TEST(CliHostileInput, MeasurementsWithAListAsKey) {

@@ -41,12 +41,20 @@ std::string formatPoint(const aiVector3D& p) {
   return out.str();
 }
 
-// Throws InputError for a face with more than kMaxFaceCorners corners, naming its line for OBJ files.
-void refuseLargePolygons(const aiScene& scene, const std::filesystem::path& file) {
+// Throws InputError for a face with more than kMaxFaceCorners corners, naming its line for OBJ files, and for a face
+// without corners or with a corner past the mesh's vertices (assimp's triangulation aborts the process on those; a
+// malformed PLY read past its garbage gave one, found by fuzz/fuzz_avatar.cpp).
+void refuseBadFaces(const aiScene& scene, const std::filesystem::path& file) {
   for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
     const aiMesh* mesh = scene.mMeshes[m];
     for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-      const unsigned corners = mesh->mFaces[f].mNumIndices;
+      const aiFace& face = mesh->mFaces[f];
+      const unsigned corners = face.mNumIndices;
+      bool outOfRange = corners == 0 || face.mIndices == nullptr;
+      for (unsigned k = 0; k < corners && !outOfRange; ++k) outOfRange = face.mIndices[k] >= mesh->mNumVertices;
+      if (outOfRange)
+        fail(file, "mesh " + std::to_string(m) + " face " + std::to_string(f) +
+                       (corners == 0 ? " has no vertices" : " refers to a vertex out of range"));
       if (corners <= kMaxFaceCorners) continue;
       const std::string limit = " (at most " + std::to_string(kMaxFaceCorners) + ")";
       if (lowerExtension(file) == ".obj") {
@@ -77,7 +85,7 @@ const aiScene* readScene(Assimp::Importer& importer, const std::filesystem::path
   if (!plyProblem.empty()) fail(file, plyProblem);
   const aiScene* scene = importer.ReadFile(file.string(), 0);
   if (scene) {
-    refuseLargePolygons(*scene, file);
+    refuseBadFaces(*scene, file);
     const unsigned flags =
         aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType;
     scene = importer.ApplyPostProcessing(flags);
