@@ -4,6 +4,7 @@
 set(DRAPE_SLOW_TESTS
   AvatarFeatureContact.DefaultSceneBodyDoesNotShowThroughTheShirt
   BroadTallBody.ShortDrapeOfTheFittedShirtIsLessStrained
+  CliBench.ExtremesGridReportsEveryCellAndItsVerdict
   CliPlacement.ShirtOnABroaderTallerMannequinIsMovedWithAWarningPerPanel
   CliQuality.GarmentTooSmallForTheBodyFailsTheVerdictWithExitStatus4
   ExplodedState.EndsDivergedInEveryStageWithTheStateBeforeIt
