@@ -94,24 +94,26 @@ json recordedBatchRow(const BatchJobFiles& files) {
 }
 
 std::vector<std::string> batchJobArguments(const BatchManifest& manifest, const BatchJob& job,
-                                           const BatchJobFiles& files) {
+                                           const BatchJobFiles& files, int threads) {
   std::vector<std::string> args = {"--simulate"};
   const auto scene = sceneArguments(job);
   args.insert(args.end(), scene.begin(), scene.end());
   args.insert(args.end(), {"-o", files.mesh.string(), "--stats", files.stats.string(), "--solver", manifest.solver});
   if (manifest.maxSimTime > 0) args.insert(args.end(), {"--max-sim-time", json(manifest.maxSimTime).dump()});
   if (!files.png.empty()) args.insert(args.end(), {"--png", files.png.string(), "--size", kBatchThumbnailSize});
+  if (threads > 0) args.insert(args.end(), {"--threads", std::to_string(threads)});
   return args;
 }
 
-RunningBatchJob startBatchJob(const BatchManifest& manifest, const BatchJob& job, const BatchJobFiles& files) {
+RunningBatchJob startBatchJob(const BatchManifest& manifest, const BatchJob& job, const BatchJobFiles& files,
+                              int threads) {
   std::error_code ec;
   fs::remove_all(files.dir, ec);  // what a killed or failed run left
   fs::create_directories(files.dir, ec);
   if (ec) throw InputError(files.dir.string() + ": cannot create the job folder: " + ec.message());
   RunningBatchJob running;
   running.start = std::chrono::steady_clock::now();
-  running.pid = spawnProcess(drapeExecutable(), batchJobArguments(manifest, job, files), files.log, files.errors);
+  running.pid = spawnProcess(drapeExecutable(), batchJobArguments(manifest, job, files, threads), files.log, files.errors);
   return running;
 }
 
@@ -149,14 +151,6 @@ json finishBatchJob(const BatchManifest& manifest, const BatchJob& job, const Ba
   const json row = summaryRow(job, outcome, outputs);
   writeFileAtomically(rowFinished(row) ? files.done : files.failed, row.dump(2) + "\n");
   return row;
-}
-
-json runBatchJob(const BatchManifest& manifest, const BatchJob& job, const fs::path& outDir) {
-  const BatchJobFiles files = batchJobFiles(manifest, job, outDir);
-  const RunningBatchJob running = startBatchJob(manifest, job, files);
-  const int status = waitForProcess(running.pid);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - running.start).count();
-  return finishBatchJob(manifest, job, files, status, wall);
 }
 
 }  // namespace drape::app

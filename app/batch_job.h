@@ -37,9 +37,9 @@ bool batchJobFinished(const BatchJobFiles& files);
 // The row that done.json, else failed.json, holds; null when the job has neither (never run, or unreadable).
 nlohmann::json recordedBatchRow(const BatchJobFiles& files);
 
-// The arguments of the job's `drape --simulate` (without the executable).
+// The arguments of the job's `drape --simulate` (without the executable); threads > 0 caps its threads.
 std::vector<std::string> batchJobArguments(const BatchManifest& manifest, const BatchJob& job,
-                                           const BatchJobFiles& files);
+                                           const BatchJobFiles& files, int threads);
 
 struct RunningBatchJob {
   pid_t pid = -1;
@@ -48,15 +48,13 @@ struct RunningBatchJob {
 
 // Empties the job's folder and starts its child (stdin /dev/null, stdout to log.txt, stderr to errors.txt). Throws
 // InputError when the folder cannot be made or the process cannot be started.
-RunningBatchJob startBatchJob(const BatchManifest& manifest, const BatchJob& job, const BatchJobFiles& files);
+RunningBatchJob startBatchJob(const BatchManifest& manifest, const BatchJob& job, const BatchJobFiles& files,
+                              int threads);
 
 // After the child ended with waitStatus (as waitpid reports it): reads its stats and the line that says why it failed,
 // makes the glb when asked, removes what the manifest did not ask for, writes done.json (exit status 0) or
 // failed.json, and returns the job's summary row.
 nlohmann::json finishBatchJob(const BatchManifest& manifest, const BatchJob& job, const BatchJobFiles& files,
                               int waitStatus, double wallTime);
-
-// One job from start to end, blocking: the unit a shard of a cluster job array runs.
-nlohmann::json runBatchJob(const BatchManifest& manifest, const BatchJob& job, const std::filesystem::path& outDir);
 
 }  // namespace drape::app

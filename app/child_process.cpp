@@ -3,8 +3,10 @@
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 
 #include "drape/core/input_error.h"
@@ -17,6 +19,20 @@ std::filesystem::path drapeExecutable() {
   std::error_code ec;
   const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
   return ec ? std::filesystem::path("/proc/self/exe") : self;
+}
+
+std::filesystem::path findOnPath(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  std::string folders = path ? path : "/usr/bin:/bin";
+  for (size_t start = 0; start <= folders.size();) {
+    size_t end = folders.find(':', start);
+    if (end == std::string::npos) end = folders.size();
+    const std::filesystem::path candidate =
+        std::filesystem::path(end > start ? folders.substr(start, end - start) : ".") / program;
+    if (::access(candidate.c_str(), X_OK) == 0 && std::filesystem::is_regular_file(candidate)) return candidate;
+    start = end + 1;
+  }
+  return {};
 }
 
 pid_t spawnProcess(const std::filesystem::path& executable, const std::vector<std::string>& arguments,

@@ -11,6 +11,9 @@ namespace drape::app {
 // This executable (/proc/self/exe resolved), so that a job runs exactly the code of the batch that started it.
 std::filesystem::path drapeExecutable();
 
+// The first executable file named program in a folder of $PATH; empty when there is none.
+std::filesystem::path findOnPath(const std::string& program);
+
 // Starts executable with arguments, stdin from /dev/null and stdout, stderr into the two files (appended to when
 // append, else truncated). Returns the process id; throws InputError when it cannot be started.
 pid_t spawnProcess(const std::filesystem::path& executable, const std::vector<std::string>& arguments,

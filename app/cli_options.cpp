@@ -1,7 +1,10 @@
 #include "cli_options.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 
 #include "drape/core/input_error.h"
 
@@ -15,6 +18,24 @@ bool parseSize(const std::string& text, int& w, int& h) {
   auto [p2, e2] = std::from_chars(text.data() + x + 1, text.data() + text.size(), h);
   return e1 == std::errc() && e2 == std::errc() && p1 == text.data() + x && p2 == text.data() + text.size() &&
          w >= 16 && h >= 16 && w <= 8192 && h <= 8192;
+}
+
+// A whole number from 1 to max, or an InputError naming the option.
+int count(const std::string& s, const std::string& option, const char* what, int max) {
+  int n = 0;
+  const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), n);
+  if (error != std::errc() || end != s.data() + s.size() || n < 1 || n > max)
+    throw InputError(option + ": '" + s + "' is not a number of " + what + " from 1 to " + std::to_string(max));
+  return n;
+}
+
+// A value written into an sbatch script's #SBATCH line: letters, digits and -_:.,+ only.
+std::string sbatchValue(const std::string& s, const std::string& option) {
+  const bool ok = !s.empty() && std::all_of(s.begin(), s.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || std::strchr("-_:.,+", c) != nullptr;
+  });
+  if (!ok) throw InputError(option + ": '" + s + "' is not a Slurm name or time (letters, digits, -_:.,+)");
+  return s;
 }
 
 void requireOneOf(const std::string& option, const std::string& value, std::initializer_list<const char*> valid) {
@@ -51,10 +72,19 @@ std::string usageText() {
                                           a smooth watertight mannequin from body measurements (cm)
   drape --batch MANIFEST.json -o OUTDIR [--jobs N] [--list]
                                           every job of a batch manifest (docs/FORMATS.md), N at a time (default:
-                                          the core count), each in OUTDIR/<id>/; then OUTDIR/summary.csv,
-                                          summary.json and contact_sheet.png. Jobs with a done.json are skipped, so
-                                          the same command finishes a killed batch. --list prints the job ids only.
-                                          Progress: [done/failed/total]. Exit 5 when some jobs failed
+                                          the core count, the cores shared among them), each in OUTDIR/<id>/; then
+                                          OUTDIR/summary.csv, summary.json and contact_sheet.png. Jobs with a
+                                          done.json are skipped, so the same command finishes a killed batch.
+                                          --list prints the job ids only. Progress: [done/failed/total].
+                                          Exit 5 when some jobs failed
+  drape --batch MANIFEST.json -o OUTDIR --slurm [--partition P] [--time T] [--cpus-per-task N] [--tasks N]
+                                          submit the unfinished jobs to Slurm as one job array (one task per job
+                                          by default) and a job that gathers the summary when it ends; OUTDIR must
+                                          be on a filesystem the nodes share. Again: resubmits what did not finish
+  drape --batch MANIFEST.json -o OUTDIR --shard I/N
+                                          only the jobs whose index is I modulo N, no summary (an array task)
+  drape --batch MANIFEST.json -o OUTDIR --gather
+                                          the summary and contact sheet of what has run, running nothing
   drape --list-settings                   every setting with its default, unit and meaning
   drape --list-fabrics                    the fabric presets
   drape --help | --version
@@ -65,6 +95,7 @@ Scene options (every headless mode):
   --avatar-units U        unit of the avatar file: m, cm, mm or in (inches); default m
   --fabric PRESET          fabric of every panel (see --list-fabrics)
   --set KEY=VALUE          override any setting by its dotted name (repeatable; see --list-settings)
+  --threads N              use at most N threads (default: every core)
 
 Solvers (--solver for --simulate and --bench, --simulate for --render; default: the scene's solver.stage):
   none     the placed garment
@@ -115,12 +146,35 @@ CliOptions parseCommandLine(int argc, char** argv) {
       setMode(Mode::Batch, a);
       o.batch = value(i, a);
     } else if (a == "--jobs") {
-      const std::string s = value(i, a);
-      const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), o.jobs);
-      if (error != std::errc() || end != s.data() + s.size() || o.jobs < 1 || o.jobs > 1024)
-        throw InputError(a + ": '" + s + "' is not a number of jobs from 1 to 1024");
+      o.jobs = count(value(i, a), a, "jobs", 1024);
     } else if (a == "--list") {
       o.list = true;
+    } else if (a == "--shard") {
+      const std::string s = value(i, a);
+      const auto slash = s.find('/');
+      const char* const first = s.data();
+      const auto [mid, e1] = std::from_chars(first, first + (slash == std::string::npos ? s.size() : slash), o.shardIndex);
+      bool ok = slash != std::string::npos && e1 == std::errc() && mid == first + slash;
+      if (ok) {
+        const auto [end, e2] = std::from_chars(first + slash + 1, first + s.size(), o.shardCount);
+        ok = e2 == std::errc() && end == first + s.size();
+      }
+      if (!ok || o.shardCount < 1 || o.shardCount > kMaxArrayTasks || o.shardIndex < 0 || o.shardIndex >= o.shardCount)
+        throw InputError(a + ": '" + s + "' is not I/N with 0 <= I < N <= " + std::to_string(kMaxArrayTasks));
+    } else if (a == "--gather") {
+      o.gather = true;
+    } else if (a == "--slurm") {
+      o.slurm = true;
+    } else if (a == "--partition") {
+      o.partition = sbatchValue(value(i, a), a);
+    } else if (a == "--time") {
+      o.timeLimit = sbatchValue(value(i, a), a);
+    } else if (a == "--cpus-per-task") {
+      o.cpusPerTask = count(value(i, a), a, "CPUs", 1024);
+    } else if (a == "--tasks") {
+      o.tasks = count(value(i, a), a, "array tasks", kMaxArrayTasks);
+    } else if (a == "--threads") {
+      o.threads = count(value(i, a), a, "threads", 1024);
     } else if (a == "--sweep") {
       o.sweeps.push_back(value(i, a));
     } else if (a == "--extremes") {
@@ -197,7 +251,12 @@ CliOptions parseCommandLine(int argc, char** argv) {
                                                             : "--make-avatar") +
                      ": missing -o OUTPUT");
   if (o.mode == Mode::Batch && o.output.empty() && !o.list) throw InputError("--batch: missing -o OUTDIR");
-  if ((o.jobs > 0 || o.list) && o.mode != Mode::Batch) throw InputError("--jobs, --list: only with --batch");
+  if ((o.jobs > 0 || o.list || o.shardCount > 0 || o.gather || o.slurm) && o.mode != Mode::Batch)
+    throw InputError("--jobs, --list, --shard, --gather, --slurm: only with --batch");
+  if ((!o.partition.empty() || !o.timeLimit.empty() || o.cpusPerTask > 0 || o.tasks > 0) && !o.slurm)
+    throw InputError("--partition, --time, --cpus-per-task, --tasks: only with --slurm");
+  if (int(o.list) + int(o.gather) + int(o.slurm) + int(o.shardCount > 0) > 1)
+    throw InputError("--list, --gather, --slurm, --shard: one at a time");
   if (o.extremes && (o.mode != Mode::Bench || !o.sweeps.empty()))
     throw InputError("--extremes: only with --bench, and not with --sweep");
   if (!o.from.empty() && o.mode != Mode::Simulate && o.mode != Mode::Render)

@@ -29,7 +29,18 @@ struct CliOptions {
   std::string batch;                   // --batch MANIFEST.json
   int jobs = 0;                        // --jobs N (batch): jobs at a time; 0: the core count
   bool list = false;                   // --list (batch): print the job list, run nothing
+  int shardIndex = 0, shardCount = 0;  // --shard I/N (batch): only the jobs whose index is I modulo N; 0: all
+  bool gather = false;                 // --gather (batch): write the summary and contact sheet, run nothing
+  bool slurm = false;                  // --slurm (batch): submit a Slurm job array instead of running here
+  std::string partition;               // --partition P (slurm)
+  std::string timeLimit;               // --time T (slurm), as sbatch takes it
+  int cpusPerTask = 0;                 // --cpus-per-task N (slurm); 0: the cluster's default
+  int tasks = 0;                       // --tasks N (slurm): array tasks; 0: one per job, at most kMaxArrayTasks
+  int threads = 0;                     // --threads N (every mode): at most N threads; 0: every core
 };
+
+// Slurm's default MaxArraySize is 1001: array indices 0..1000.
+constexpr int kMaxArrayTasks = 1000;
 
 // Parses argv; throws InputError with a one-line message for anything malformed.
 CliOptions parseCommandLine(int argc, char** argv);

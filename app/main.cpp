@@ -1,7 +1,10 @@
 // The `drape` executable. Headless modes never create a QApplication; any error becomes one line on stderr
 // and exit status 1.
+#include <tbb/global_control.h>
+
 #include <exception>
 #include <iostream>
+#include <memory>
 
 #include "cli_options.h"
 #include "commands.h"
@@ -12,6 +15,11 @@ int main(int argc, char** argv) {
   using namespace drape::app;
   try {
     const CliOptions options = parseCommandLine(argc, argv);
+    // --threads caps the engine's TBB pool (a batch gives each of its parallel jobs its share of the cores).
+    std::unique_ptr<tbb::global_control> threadCap;
+    if (options.threads > 0)
+      threadCap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                        static_cast<size_t>(options.threads));
     switch (options.mode) {
       case Mode::Help: std::cout << usageText(); return 0;
       case Mode::Version: std::cout << "drape " << DRAPE_VERSION << "\n"; return 0;

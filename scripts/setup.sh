@@ -15,6 +15,8 @@ PACKAGES=(
   qt6-base-dev libqt6opengl6-dev qt6-charts-dev
   # tests
   libgtest-dev xvfb xauth
+  # drape --batch --slurm and its test against a one-node Slurm (scripts/slurm-local.sh)
+  slurm-wlm munge
 )
 
 missing=()

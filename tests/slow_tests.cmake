@@ -4,6 +4,7 @@
 set(DRAPE_SLOW_TESTS
   AvatarFeatureContact.DefaultSceneBodyDoesNotShowThroughTheShirt
   BroadTallBody.ShortDrapeOfTheFittedShirtIsLessStrained
+  CliBatchSlurm.*
   CliBench.ExtremesGridReportsEveryCellAndItsVerdict
   CliPlacement.ShirtOnABroaderTallerMannequinIsMovedWithAWarningPerPanel
   CliQuality.GarmentTooSmallForTheBodyFailsTheVerdictWithExitStatus4

@@ -1,68 +1,19 @@
 // drape --batch through the executable: a manifest's grid and jobs expand to the expected sorted ids, bad manifests are
 // refused with one line before any job runs, and a small local batch records its one bad job, writes the summary and
-// contact sheet, and on a second run redoes only the jobs without done.json.
+// contact sheet, and on a second run redoes only the jobs without done.json; its shards (--shard I/N) gathered
+// (--gather) give the same summary.
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "run_process.h"
-#include "shared_data.h"
+#include "batch_manifests.h"
 
 namespace drape::test {
 namespace {
 
-namespace fs = std::filesystem;
 using nlohmann::json;
-
-const fs::path kScratch = testOutputDir() / "cli_batch";
-
-ProcessResult drape(const std::string& args) {
-  return runProcess(quote(DRAPE_EXECUTABLE) + " " + args + " </dev/null", kScratch);
-}
-
-// Writes a manifest into the scratch folder and returns its path.
-fs::path writeManifest(const std::string& name, const json& manifest) {
-  fs::create_directories(kScratch);
-  const fs::path file = kScratch / name;
-  std::ofstream(file) << manifest.dump(2);
-  return file;
-}
-
-// An asset as the manifests write it: relative to the scratch folder, where they are.
-std::string relativeAsset(const std::string& relative) {
-  return fs::relative(assetsDir() / relative, kScratch).string();
-}
-
-std::vector<std::string> linesOf(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);)
-    if (!line.empty()) lines.push_back(line);
-  return lines;
-}
-
-// The progress lines ("[done/failed/total] ...") of a batch's output.
-std::vector<std::string> progressLines(const std::string& out) {
-  std::vector<std::string> lines;
-  for (const auto& line : linesOf(out))
-    if (line.rfind("[", 0) == 0) lines.push_back(line);
-  return lines;
-}
-
-bool mentions(const std::vector<std::string>& lines, const std::string& text) {
-  for (const auto& line : lines)
-    if (line.find(text) != std::string::npos) return true;
-  return false;
-}
-
-// The tablecloth with the given set variations, coarse and short (well under a second per job).
-json tableclothBatch(const json& sets) {
-  return {{"max_sim_time", 0.1},
-          {"set", {"mesh.target_edge_length=0.1", "quality.require_rest=false"}},
-          {"grid", {{"scenes", {relativeAsset("scenes/tablecloth.json")}}, {"sets", sets}}}};
-}
 
 TEST(CliBatch, GridAndJobsExpandToStableSortedIds) {
   const json manifest = {
@@ -122,7 +73,7 @@ TEST(CliBatch, BadManifestsAreRefusedWithOneLineBeforeAnyJobRuns) {
       {"bad_output", {{"grid", grid}, {"outputs", {"obj", "fbx"}}}, "outputs[1]: 'fbx' is not one of"}};
   for (const Case& c : cases) {
     const fs::path file = writeManifest("bad_" + c.name + ".json", c.manifest);
-    const fs::path outDir = kScratch / ("out_bad_" + c.name);
+    const fs::path outDir = batchScratch() / ("out_bad_" + c.name);
     fs::remove_all(outDir);
     const auto r = drape("--batch " + quote(file.string()) + " -o " + quote(outDir.string()));
     EXPECT_EQ(r.exitCode, 1) << c.name << ": " << r.err << r.out;
@@ -137,7 +88,7 @@ TEST(CliBatch, OnlyTheOutputsAskedForAreKept) {
   json manifest = tableclothBatch(json::array({json::array()}));  // one set: no extra settings
   manifest["solver"] = "none";
   manifest["outputs"] = {"glb", "stats"};
-  const fs::path outDir = kScratch / "out_glb";
+  const fs::path outDir = batchScratch() / "out_glb";
   fs::remove_all(outDir);
   const auto r =
       drape("--batch " + quote(writeManifest("glb.json", manifest).string()) + " -o " + quote(outDir.string()));
@@ -154,12 +105,7 @@ TEST(CliBatch, OnlyTheOutputsAskedForAreKept) {
 }
 
 TEST(CliBatch, LocalBatchRecordsTheBadJobAndARerunRedoesOnlyUnfinishedJobs) {
-  // set2 is refused at load (exit 1); set3's drape fails its quality verdict (no strain passes: exit 4), which still
-  // finishes the job.
-  const json manifest =
-      tableclothBatch({json::array({"fabric.density=0.1"}), json::array({"fabric.density=0.2"}),
-                       json::array({"fabric.density=-1"}), json::array({"fabric.density=0.3", "quality.max_strain=0"})});
-  const fs::path file = writeManifest("local.json", manifest), outDir = kScratch / "out_local";
+  const fs::path file = writeManifest("local.json", fourJobBatch()), outDir = batchScratch() / "out_local";
   fs::remove_all(outDir);
   const std::string command = "--batch " + quote(file.string()) + " -o " + quote(outDir.string()) + " --jobs 2";
   auto r = drape(command);
@@ -225,6 +171,71 @@ TEST(CliBatch, LocalBatchRecordsTheBadJobAndARerunRedoesOnlyUnfinishedJobs) {
   EXPECT_EQ(fs::last_write_time(outDir / "tablecloth__set0" / "done.json"), before0);
   EXPECT_EQ(fs::last_write_time(outDir / "tablecloth__set3" / "done.json"), before3);
   EXPECT_EQ(json::parse(readWhole(outDir / "summary.json")).size(), 4u);
+}
+
+TEST(CliBatch, ShardsRunTheirJobsAloneAndGatherWritesTheSummaryOfTheWholeBatch) {
+  const fs::path file = writeManifest("shards.json", fourJobBatch());
+  const fs::path local = batchScratch() / "out_shards_local", sharded = batchScratch() / "out_shards";
+  fs::remove_all(local);
+  fs::remove_all(sharded);
+  ASSERT_EQ(drape("--batch " + quote(file.string()) + " -o " + quote(local.string())).exitCode, 5);
+
+  // Shard 1/2 holds the jobs of index 1 and 3 (set1 succeeds, set3 fails its quality verdict): it runs them alone and
+  // writes no summary.
+  const std::string command = "--batch " + quote(file.string()) + " -o " + quote(sharded.string());
+  auto r = drape(command + " --shard 1/2");
+  ASSERT_EQ(r.exitCode, 5) << r.err << r.out;
+  EXPECT_NE(r.out.find("shard 1/2: 2 jobs, 0 finished before; running 2"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(sharded / "tablecloth__set1" / "done.json"));
+  EXPECT_TRUE(fs::exists(sharded / "tablecloth__set3" / "done.json"));
+  EXPECT_FALSE(fs::exists(sharded / "tablecloth__set0"));
+  EXPECT_FALSE(fs::exists(sharded / "tablecloth__set2"));
+  EXPECT_FALSE(fs::exists(sharded / "summary.json"));
+
+  // Gathered now, the jobs of shard 0 are failed rows that say they never ran.
+  r = drape(command + " --gather");
+  ASSERT_EQ(r.exitCode, 5) << r.err << r.out;
+  json rows = json::parse(readWhole(sharded / "summary.json"));
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[0].at("status"), "Failed");
+  EXPECT_NE(rows[0].at("error").get<std::string>().find("no record of this job"), std::string::npos) << rows[0];
+
+  // After shard 0/2 the gathered summary is the one-machine batch's, row for row, but for the wall times.
+  r = drape(command + " --shard 0/2");
+  ASSERT_EQ(r.exitCode, 5) << r.err << r.out;
+  EXPECT_NE(r.out.find("shard 0/2: 2 jobs, 0 finished before; running 2"), std::string::npos) << r.out;
+  r = drape(command + " --gather");
+  ASSERT_EQ(r.exitCode, 5) << r.err << r.out;
+  EXPECT_TRUE(progressLines(r.out).empty()) << r.out;  // gathering runs no job
+  EXPECT_EQ(summaryWithoutWallTimes(sharded), summaryWithoutWallTimes(local));
+  EXPECT_TRUE(fs::exists(sharded / "contact_sheet.png"));
+}
+
+TEST(CliBatch, BadShardAndSlurmOptionsAreRefusedWithOneLine) {
+  const std::string batch = "--batch " + quote(writeManifest("options.json", fourJobBatch()).string()) + " -o " +
+                            quote((batchScratch() / "out_options").string());
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {batch + " --shard 2/2", "--shard: '2/2' is not I/N with 0 <= I < N <= 1000"},
+      {batch + " --shard 1", "--shard: '1' is not I/N"},
+      {batch + " --shard 0/0", "--shard: '0/0' is not I/N"},
+      {batch + " --shard 0/2 --gather", "--list, --gather, --slurm, --shard: one at a time"},
+      {batch + " --partition debug", "--partition, --time, --cpus-per-task, --tasks: only with --slurm"},
+      {batch + " --slurm --tasks 0", "--tasks: '0' is not a number of array tasks from 1 to 1000"},
+      {batch + " --slurm --partition 'a b'", "--partition: 'a b' is not a Slurm name or time"},
+      {"--simulate x.json -o x.obj --gather", "--jobs, --list, --shard, --gather, --slurm: only with --batch"},
+      {"--info x.json --threads 0", "--threads: '0' is not a number of threads from 1 to 1024"}};
+  for (const auto& [args, message] : cases) {
+    const auto r = drape(args);
+    EXPECT_EQ(r.exitCode, 1) << args << ": " << r.err << r.out;
+    EXPECT_EQ(linesOf(r.err).size(), 1u) << args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("drape: " + message, 0), 0u) << args << ": " << r.err;
+  }
+  // Without sbatch the submission says where to run it and submits nothing.
+  const auto r = runProcess("env PATH=/nonexistent " + quote(DRAPE_EXECUTABLE) + " " + batch + " --slurm </dev/null",
+                            batchScratch());
+  EXPECT_EQ(r.exitCode, 1) << r.err << r.out;
+  EXPECT_EQ(r.err.rfind("drape: --slurm: sbatch is not on PATH", 0), 0u) << r.err;
+  EXPECT_FALSE(fs::exists(batchScratch() / "out_options" / ".slurm" / "submitted.txt"));
 }
 
 }  // namespace
