@@ -40,19 +40,22 @@ double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// --list: one line per job, tab-separated: id, scene, avatar, fabric, set ("-" for what the scene decides).
+// --list: one line per job, tab-separated: id, scene, avatar, size and its scale, fabric, set ("-" for what the scene
+// decides or what is not given).
 void listJobs(const BatchManifest& manifest, std::ostream& out) {
   auto orDash = [](const std::string& s) { return s.empty() ? std::string("-") : s; };
   for (const BatchJob& job : manifest.jobs)
-    out << job.id << "\t" << job.scene.text << "\t" << orDash(job.avatar.text) << "\t" << orDash(job.fabric) << "\t"
-        << orDash(job.setLabel) << "\n";
+    out << job.id << "\t" << job.scene.text << "\t" << orDash(job.avatar.text) << "\t"
+        << (job.size.empty() ? "-" : job.size + " x" + json(job.sizeScale).dump()) << "\t" << orDash(job.fabric)
+        << "\t" << orDash(job.setLabel) << "\n";
 }
 
-// "<stem>_<hash of the path>.obj": one file per measurement file, the same in every run (FNV-1a, not std::hash, whose
-// value may change between builds).
-std::string mannequinFileName(const fs::path& measurements) {
+// "<stem>_<hash of the path and scale>.obj": one file per measurement file and graded size, the same in every run
+// (FNV-1a, not std::hash, whose value may change between builds).
+std::string mannequinFileName(const fs::path& measurements, double scale) {
   std::uint32_t hash = 2166136261u;
-  for (unsigned char c : measurements.string()) hash = (hash ^ c) * 16777619u;
+  const std::string key = measurements.string() + (scale == 1.0 ? "" : "@" + json(scale).dump());
+  for (unsigned char c : key) hash = (hash ^ c) * 16777619u;
   char hex[9];
   std::snprintf(hex, sizeof hex, "%08x", hash);
   return sanitizeJobId(measurements.stem().string()) + "_" + hex + ".obj";
@@ -65,12 +68,15 @@ void prepareMannequins(BatchManifest& manifest, const std::vector<size_t>& pendi
   for (size_t i : pending) {
     BatchJob& job = manifest.jobs[i];
     if (!job.avatarIsMeasurements) continue;
-    job.avatarMesh = outDir / ".mannequins" / mannequinFileName(job.avatar.file);
+    job.avatarMesh = outDir / ".mannequins" / mannequinFileName(job.avatar.file, job.sizeScale);
     std::error_code ec;
     if (fs::exists(job.avatarMesh, ec)) continue;
     fs::create_directories(job.avatarMesh.parent_path(), ec);
-    out << "making the mannequin of " << job.avatar.text << " ... " << std::flush;
-    exportMesh(makeMannequin(loadBodyMeasurements(job.avatar.file)), job.avatarMesh);
+    out << "making the mannequin of " << job.avatar.text;
+    if (!job.size.empty()) out << " in size " << job.size << " (x" << job.sizeScale << ")";
+    out << " ... " << std::flush;
+    exportMesh(makeMannequin(scaledBodyMeasurements(loadBodyMeasurements(job.avatar.file), job.sizeScale)),
+               job.avatarMesh);
     out << "wrote " << job.avatarMesh.string() << "\n";
   }
 }
@@ -88,11 +94,13 @@ ContactSheetEntry sheetEntry(const json& row, const fs::path& outDir) {
   const std::string avatar = row.at("avatar").get<std::string>();
   const std::string fabric = row.at("fabric").get<std::string>();
   const std::string set = row.at("set").get<std::string>();
+  const std::string size = row.value("size", std::string());
   ContactSheetEntry entry;
   const std::string png = row.at("png").get<std::string>();
   if (!png.empty()) entry.image = outDir / png;
   // What the scene decides itself (its avatar, its fabric) is left out of the label.
-  entry.label = {stem(row.at("scene").get<std::string>()) + (avatar.empty() ? "" : " on " + stem(avatar)),
+  entry.label = {stem(row.at("scene").get<std::string>()) +
+                     (!size.empty() ? ", size " + size : avatar.empty() ? "" : " on " + stem(avatar)),
                  (fabric.empty() ? "scene fabric" : fabric) + (set.empty() ? "" : ", " + set), statusText(row)};
   entry.failed = !rowSucceeded(row);
   return entry;

@@ -16,7 +16,11 @@ using nlohmann::json;
 namespace fs = std::filesystem;
 
 const std::vector<std::string> kTopKeys = {"description", "solver", "max_sim_time", "outputs", "set", "grid", "jobs"};
-const std::vector<std::string> kGridKeys = {"scenes", "avatars", "fabrics", "sets"};
+const std::vector<std::string> kGridKeys = {"scenes", "avatars", "sizes", "fabrics", "sets"};
+const std::vector<std::string> kSizesKeys = {"measurements", "scales"};
+const std::vector<std::string> kSizeKeys = {"name", "scale"};
+// A graded size's scale: beyond these a garment is another garment, not another size.
+constexpr double kMinSizeScale = 0.5, kMaxSizeScale = 2.0;
 const std::vector<std::string> kJobKeys = {"id", "scene", "avatar", "fabric", "set"};
 const std::vector<std::string> kOutputs = {"obj", "glb", "png", "stats"};
 const std::vector<std::string> kSolvers = {"none", "preview", "drape", "full"};
@@ -27,16 +31,55 @@ std::string setLabel(const SettingOverrides& overrides) {
   return label;
 }
 
-// scene__avatar__fabric__set from the parts that are given (file stems for files).
-std::string derivedId(const BatchJob& job, const std::string& setPart) {
+// scene__avatar__fabric__set from the parts that are given (file stems for files; for a graded size its part instead
+// of the avatar's).
+std::string derivedId(const BatchJob& job, const std::string& setPart, const std::string& sizePart = "") {
   std::vector<std::string> parts = {fs::path(job.scene.text).stem().string()};
-  if (!job.avatar.empty()) parts.push_back(fs::path(job.avatar.text).stem().string());
+  if (!sizePart.empty()) parts.push_back(sizePart);
+  else if (!job.avatar.empty()) parts.push_back(fs::path(job.avatar.text).stem().string());
   if (!job.fabric.empty()) parts.push_back(job.fabric);
   if (!setPart.empty()) parts.push_back(setPart);
   return sanitizeJobId(joinedList(parts, "__"));
 }
 
-// The grid's cross product, in the order scenes x avatars x fabrics x sets. Each axis is validated once; an axis that
+// grid.sizes: {"measurements": FILE, "scales": [{"name": "S", "scale": 0.96}, ...]}, one avatar entry per size: the
+// measurements' mannequin, both it and the pattern scaled (grading.scale). The id part is "<index>_<name>", the index
+// zero-padded, so that the sorted job list keeps the sizes in the manifest's order.
+std::vector<std::pair<BatchJob, std::string>> gradedSizes(const ManifestReader& reader, const json& sizes) {
+  if (!sizes.is_object()) reader.fail("grid.sizes", "must be an object with 'measurements' and 'scales'");
+  reader.checkKeys(sizes, "grid.sizes.", kSizesKeys);
+  if (!sizes.contains("measurements"))
+    reader.fail("grid.sizes.measurements", "missing (the body-measurement file of scale 1)");
+  if (!sizes.contains("scales")) reader.fail("grid.sizes.scales", "missing (a list of {\"name\", \"scale\"})");
+  BatchJob base;
+  reader.avatar(sizes.at("measurements"), "grid.sizes.measurements", base);
+  if (!base.avatarIsMeasurements)
+    reader.fail("grid.sizes.measurements", "must be a body-measurement file (.yaml, .yml, .json), not a mesh");
+  const json& list = reader.list(sizes.at("scales"), "grid.sizes.scales");
+  const size_t digits = std::to_string(list.size() - 1).size();
+  std::vector<std::pair<BatchJob, std::string>> entries;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string at = "grid.sizes.scales[" + std::to_string(i) + "]";
+    if (!list[i].is_object()) reader.fail(at, "must be an object {\"name\": ..., \"scale\": ...}");
+    reader.checkKeys(list[i], at + ".", kSizeKeys);
+    if (!list[i].contains("name")) reader.fail(at + ".name", "missing");
+    if (!list[i].contains("scale")) reader.fail(at + ".scale", "missing");
+    BatchJob job = base;
+    job.size = reader.text(list[i].at("name"), at + ".name");
+    const json& scale = list[i].at("scale");
+    if (!scale.is_number() || !(scale.get<double>() >= kMinSizeScale && scale.get<double>() <= kMaxSizeScale))
+      reader.fail(at + ".scale", "must be a number from 0.5 to 2, got " + scale.dump());
+    job.sizeScale = scale.get<double>();
+    reader.mannequinOf(job.avatar.file, job.sizeScale, at + ".scale");
+    std::string index = std::to_string(i);
+    index.insert(0, digits - index.size(), '0');
+    const std::string idPart = sanitizeJobId(index + "_" + job.size);
+    entries.emplace_back(std::move(job), idPart);
+  }
+  return entries;
+}
+
+// The grid's cross product, in the order scenes x avatars (or sizes) x fabrics x sets. Each axis is validated once; an axis that
 // is not given is one empty entry: the scene's own avatar or fabric, no extra settings.
 void expandGrid(const ManifestReader& reader, const json& grid, const SettingOverrides& common,
                 std::vector<std::pair<BatchJob, std::string>>& jobs) {
@@ -53,11 +96,20 @@ void expandGrid(const ManifestReader& reader, const json& grid, const SettingOve
     return entries;
   };
   const auto scenes = axis("scenes", [&](const json& j, const std::string& at) { return reader.file(j, at); });
-  const auto avatars = axis("avatars", [&](const json& j, const std::string& at) {
-    BatchJob holder;
-    reader.avatar(j, at, holder);
-    return holder;
-  });
+  if (grid.contains("sizes") && grid.contains("avatars"))
+    reader.fail("grid.sizes", "not with grid.avatars: each size drapes on its own mannequin");
+  // (avatar fields, id part): the avatars given, or the sizes, or one entry for the scene's own avatar.
+  std::vector<std::pair<BatchJob, std::string>> avatars;
+  if (grid.contains("sizes")) {
+    avatars = gradedSizes(reader, grid.at("sizes"));
+  } else {
+    for (auto& [holder, given_] : axis("avatars", [&](const json& j, const std::string& at) {
+           BatchJob holder;
+           reader.avatar(j, at, holder);
+           return holder;
+         }))
+      avatars.emplace_back(std::move(holder), "");
+  }
   const auto fabrics = axis("fabrics", [&](const json& j, const std::string& at) { return reader.fabric(j, at); });
   const auto sets = axis("sets", [&](const json& j, const std::string& at) { return reader.overrides(j, at); });
   for (size_t s = 0; s < scenes.size(); ++s)
@@ -69,9 +121,11 @@ void expandGrid(const ManifestReader& reader, const json& grid, const SettingOve
           job.fabric = fabrics[f].first;
           job.overrides = common;
           job.overrides.insert(job.overrides.end(), sets[v].first.begin(), sets[v].first.end());
+          if (!job.size.empty()) job.overrides.emplace_back("grading.scale", json(job.sizeScale).dump());
           job.setLabel = setLabel(sets[v].first);
-          job.id = derivedId(job, sets[v].second ? "set" + std::to_string(v) : "");
-          const std::string element = "grid (scenes[" + std::to_string(s) + "], avatars[" + std::to_string(a) +
+          job.id = derivedId(job, sets[v].second ? "set" + std::to_string(v) : "", avatars[a].second);
+          const std::string element = "grid (scenes[" + std::to_string(s) + "], " +
+                                      (job.size.empty() ? "avatars[" : "sizes.scales[") + std::to_string(a) +
                                       "], fabrics[" + std::to_string(f) + "], sets[" + std::to_string(v) + "])";
           jobs.emplace_back(std::move(job), element);
         }

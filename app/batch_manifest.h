@@ -1,6 +1,6 @@
 #pragma once
-// A batch manifest (docs/FORMATS.md, "Batch manifests"): explicit jobs and/or a grid of scenes x avatars x fabrics
-// x set variations, expanded into a job list sorted by id. Every problem is found here, before any job runs.
+// A batch manifest (docs/FORMATS.md, "Batch manifests"): explicit jobs and/or a grid of scenes x avatars (or graded
+// sizes) x fabrics x set variations, expanded into a job list sorted by id. Every problem is found here, before any job runs.
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -24,6 +24,8 @@ struct BatchJob {
   BatchInput avatar;                  // avatar mesh or body-measurement file; empty: the scene's own avatar
   bool avatarIsMeasurements = false;  // .yaml/.yml/.json: a mannequin is made from it (drape --make-avatar)
   std::filesystem::path avatarMesh;   // the mesh the job drapes on: avatar.file, or the mannequin made from it
+  std::string size;                   // a graded size's name (grid `sizes`); empty: none
+  double sizeScale = 1.0;             // its scale of the pattern and of the mannequin's measurements
   std::string fabric;                 // preset name; empty: the scene's fabric
   SettingOverrides overrides;         // the manifest's common `set`, then the job's own
   std::string setLabel;               // the job's own overrides as "KEY=VALUE KEY=VALUE" (for the summary)

@@ -77,6 +77,14 @@ void ManifestReader::avatar(const json& value, const std::string& element, Batch
   }
 }
 
+void ManifestReader::mannequinOf(const fs::path& measurements, double scale, const std::string& element) const {
+  try {
+    mannequinLevels(scaledBodyMeasurements(loadBodyMeasurements(measurements), scale));
+  } catch (const InputError& e) {
+    fail(element, e.what());
+  }
+}
+
 std::string ManifestReader::fabric(const json& value, const std::string& element) const {
   const std::string name = text(value, element);
   const auto presets = fabricPresetNames();

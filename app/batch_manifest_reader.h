@@ -31,6 +31,8 @@ class ManifestReader {
   // An avatar mesh, or a body-measurement file (.yaml, .yml, .json) whose mannequin can be made: sets job.avatar,
   // job.avatarIsMeasurements and job.avatarMesh (the mesh itself; a mannequin's path is decided when the batch runs).
   void avatar(const nlohmann::json& value, const std::string& element, BatchJob& job) const;
+  // Checks that the mannequin of the measurements file, every length times scale, can be made.
+  void mannequinOf(const std::filesystem::path& measurements, double scale, const std::string& element) const;
   // The name of a fabric preset (drape --list-fabrics).
   std::string fabric(const nlohmann::json& value, const std::string& element) const;
   // A list of "KEY=VALUE" strings naming known settings. The values are checked by each job when it loads its

@@ -19,7 +19,7 @@ struct BatchJobOutcome {
   double wallTime = 0.0;  // seconds
 };
 
-// The job's row: id, scene, avatar, fabric, set, status (the stats' end status, or "Failed" without stats),
+// The job's row: id, scene, avatar, size, fabric, set, status (the stats' end status, or "Failed" without stats),
 // exit_status, error, wall_time_s, sim_time_s, steps, max_strain, inside_vertices, self_intersections, at_rest,
 // quality_passed and the output paths relative to OUTDIR (obj, glb, png, stats; empty when not written).
 // Numbers the stats do not hold are null.

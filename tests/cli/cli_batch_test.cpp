@@ -43,14 +43,32 @@ TEST(CliBatch, GridAndJobsExpandToStableSortedIds) {
   EXPECT_EQ(ids, expected) << r.out;
   // The line of a job names its inputs as the manifest wrote them.
   EXPECT_NE(r.out.find("tablecloth__denim__set0\t" + relativeAsset("scenes/tablecloth.json") +
-                       "\t-\tdenim\tfabric.density=0.1\n"),
+                       "\t-\t-\tdenim\tfabric.density=0.1\n"),
             std::string::npos)
       << r.out;
+}
+
+TEST(CliBatch, GradedSizesKeepTheManifestsOrderWithTheirScales) {
+  const json manifest = {
+      {"grid",
+       {{"scenes", {relativeAsset("scenes/tshirt.json")}},
+        {"sizes",
+         {{"measurements", relativeAsset("avatars/female.yaml")},
+          {"scales", {{{"name", "S"}, {"scale", 0.95}}, {{"name", "M"}, {"scale", 1}}, {{"name", "L"}, {"scale", 1.05}}}}}},
+        {"fabrics", {"denim"}}}}};
+  const auto r = drape("--batch " + quote(writeManifest("sizes.json", manifest).string()) + " --list");
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  const std::string scene = relativeAsset("scenes/tshirt.json"), body = relativeAsset("avatars/female.yaml");
+  EXPECT_EQ(r.out, "tshirt__0_S__denim\t" + scene + "\t" + body + "\tS x0.95\tdenim\t-\n" +  //
+                       "tshirt__1_M__denim\t" + scene + "\t" + body + "\tM x1.0\tdenim\t-\n" +  //
+                       "tshirt__2_L__denim\t" + scene + "\t" + body + "\tL x1.05\tdenim\t-\n");
 }
 
 TEST(CliBatch, BadManifestsAreRefusedWithOneLineBeforeAnyJobRuns) {
   const std::string cloth = relativeAsset("scenes/tablecloth.json");
   const json grid = {{"scenes", {cloth}}};
+  const std::string female = relativeAsset("avatars/female.yaml");
+  const json sizes = {{{"name", "M"}, {"scale", 1.0}}};
   struct Case {
     std::string name;
     json manifest;
@@ -70,7 +88,20 @@ TEST(CliBatch, BadManifestsAreRefusedWithOneLineBeforeAnyJobRuns) {
       {"wrong_type", {{"grid", grid}, {"max_sim_time", "1"}}, "max_sim_time: must be a positive number"},
       {"unknown_fabric", {{"grid", {{"scenes", {cloth}}, {"fabrics", {"tweed"}}}}}, "grid.fabrics[0]: unknown fabric"},
       {"unknown_setting", {{"grid", grid}, {"set", {"mesh.edge=0.1"}}}, "set[0]: unknown setting 'mesh.edge'"},
-      {"bad_output", {{"grid", grid}, {"outputs", {"obj", "fbx"}}}, "outputs[1]: 'fbx' is not one of"}};
+      {"bad_output", {{"grid", grid}, {"outputs", {"obj", "fbx"}}}, "outputs[1]: 'fbx' is not one of"},
+      {"sizes_and_avatars",
+       {{"grid", {{"scenes", {cloth}}, {"avatars", {female}}, {"sizes", {{"measurements", female}, {"scales", sizes}}}}}},
+       "grid.sizes: not with grid.avatars"},
+      {"size_of_a_mesh",
+       {{"grid", {{"scenes", {cloth}}, {"sizes", {{"measurements", relativeAsset("avatars/female.obj")}, {"scales", sizes}}}}}},
+       "grid.sizes.measurements: must be a body-measurement file"},
+      {"size_scale",
+       {{"grid",
+         {{"scenes", {cloth}}, {"sizes", {{"measurements", female}, {"scales", {{{"name", "XXL"}, {"scale", 3}}}}}}}}},
+       "grid.sizes.scales[0].scale: must be a number from 0.5 to 2, got 3"},
+      {"size_name",
+       {{"grid", {{"scenes", {cloth}}, {"sizes", {{"measurements", female}, {"scales", {{{"scale", 1}}}}}}}}},
+       "grid.sizes.scales[0].name: missing"}};
   for (const Case& c : cases) {
     const fs::path file = writeManifest("bad_" + c.name + ".json", c.manifest);
     const fs::path outDir = batchScratch() / ("out_bad_" + c.name);
@@ -143,7 +174,7 @@ TEST(CliBatch, LocalBatchRecordsTheBadJobAndARerunRedoesOnlyUnfinishedJobs) {
   }
   const auto csv = linesOf(readWhole(outDir / "summary.csv"));
   ASSERT_EQ(csv.size(), 5u);
-  EXPECT_EQ(csv[0].rfind("id,scene,avatar,fabric,set,status,exit_status,error,", 0), 0u) << csv[0];
+  EXPECT_EQ(csv[0].rfind("id,scene,avatar,size,fabric,set,status,exit_status,error,", 0), 0u) << csv[0];
   EXPECT_EQ(csv[3].rfind("tablecloth__set2,", 0), 0u) << csv[3];
 #ifdef DRAPE_TEST_WITH_GUI
   // A PNG whose width (IHDR, big-endian at byte 16) holds the four 256-pixel thumbnails side by side.

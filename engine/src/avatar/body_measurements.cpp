@@ -120,4 +120,14 @@ BodyMeasurements loadBodyMeasurements(const std::filesystem::path& file) {
   return m;
 }
 
+BodyMeasurements scaledBodyMeasurements(const BodyMeasurements& body, double scale) {
+  BodyMeasurements m = body;
+  for (double* length : {&m.height, &m.bust, &m.underbust, &m.waist, &m.hips, &m.shoulderWidth, &m.neckWidth,
+                         &m.armLength, &m.wrist, &m.thigh})
+    *length *= scale;
+  for (std::optional<double>* length : {&m.headLength, &m.waistLine, &m.hipsLine, &m.crotchHipDiff, &m.vertBustLine})
+    if (*length) **length *= scale;
+  return m;
+}
+
 }  // namespace drape

@@ -139,6 +139,8 @@ Scene loadScene(const SceneRequest& request) {
   scene.patternFile = scene.settings.text("pattern");
   if (barePattern) scene.pattern = loadPattern(scene.patternFile, &scene.diagnostics);
   else within("pattern", [&] { scene.pattern = loadPattern(scene.patternFile, &scene.diagnostics); });
+  // A graded size scales every pattern length (panel outlines and placements) alike: fewer pattern units per metre.
+  scene.pattern.unitsInMeter /= scene.settings.number("grading.scale");
 
   if (scene.settings.has("avatar.file") && !scene.settings.text("avatar.file").empty()) {
     scene.avatarFile = scene.settings.text("avatar.file");

@@ -27,6 +27,8 @@ const std::vector<SettingSpec>& Settings::specs() {
       {"mesh.conforming_seams", T::Boolean, "true", "", "stitched edges sampled alike and sewn vertex to vertex; "
        "false: each edge at its own spacing, seams sewn vertex to edge point (non-conforming)"},
       {"sim.gravity", T::Number, "-9.81", "m/s^2", "gravity along y", -1000, 1000},
+      {"grading.scale", T::Number, "1", "", "a graded size: the whole pattern, panels and their placement, scaled "
+       "uniformly about the pattern's origin (docs/FORMATS.md, \"Sizes\")", 0.25, 4},
       {"placement.translate", T::Vector3, "0,0,0", "m", "moves the placed garment, every panel, by this vector: for "
        "a pattern laid out around another body's origin", -100, 100},
       {"placement.fit", T::Boolean, "true", "", "fits a pattern laid out around another body to the avatar: panel "

@@ -34,4 +34,7 @@ struct BodyMeasurements {
 // [0, 90)) raise InputError naming the file and the key.
 BodyMeasurements loadBodyMeasurements(const std::filesystem::path& file);
 
+// The body of a uniformly graded size: every length times scale, the arm pose angle kept.
+BodyMeasurements scaledBodyMeasurements(const BodyMeasurements& body, double scale);
+
 }  // namespace drape
