@@ -79,8 +79,8 @@ bool writeContactSheet(const std::vector<ContactSheetEntry>& entries, const std:
   const QuietQtMessages quiet;
   const auto application = offscreenApplication();
   const int count = std::max<int>(1, static_cast<int>(entries.size()));
-  // Up to 4 columns for small batches, a square grid for large ones.
-  const int columns = std::min(count, std::max(4, static_cast<int>(std::ceil(std::sqrt(count)))));
+  // One row for up to 5 jobs (a size run), a square grid for large batches.
+  const int columns = std::min(count, std::max(5, static_cast<int>(std::ceil(std::sqrt(count)))));
   const int rows = (count + columns - 1) / columns;
   size_t lines = 1;
   for (const auto& e : entries) lines = std::max(lines, e.label.size());

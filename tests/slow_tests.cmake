@@ -6,6 +6,7 @@ set(DRAPE_SLOW_TESTS
   BroadTallBody.ShortDrapeOfTheFittedShirtIsLessStrained
   CliBatchSlurm.*
   CliBench.ExtremesGridReportsEveryCellAndItsVerdict
+  CliMakeAvatar.BuildsTheSameMannequinFromMeasurementsInEveryRun
   CliPlacement.ShirtOnABroaderTallerMannequinIsMovedWithAWarningPerPanel
   CliQuality.GarmentTooSmallForTheBodyFailsTheVerdictWithExitStatus4
   ExplodedState.EndsDivergedInEveryStageWithTheStateBeforeIt

@@ -222,6 +222,29 @@ TEST(Mannequin, ArmPoseAngleIsBelowTheHorizontal) {
   EXPECT_LT(boundsOf(apose.vertices).max.x(), 0.5 * m.shoulderWidth + std::cos(0.8) * m.armLength + 0.2);
 }
 
+// CGAL hands the surface's facets over in an order that follows memory addresses; the mannequin's own order is
+// canonical, so that the same measurements give the same file in every run (CliMakeAvatar checks two processes).
+TEST(Mannequin, MeshIsInCanonicalOrder) {
+  const BodyMeasurements m = loadBodyMeasurements(test::assetsDir() / "avatars" / "female.yaml");
+  MannequinOptions coarse;
+  coarse.facetSize = 0.03;
+  coarse.facetDistance = 0.005;
+  const TriangleMesh a = makeMannequin(m, coarse);
+  ASSERT_GT(a.vertices.rows(), 100);
+  for (Eigen::Index i = 1; i < a.vertices.rows(); ++i) {
+    const Eigen::RowVector3d p = a.vertices.row(i - 1), q = a.vertices.row(i);
+    ASSERT_TRUE(std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3)) << "vertex " << i;
+  }
+  for (Eigen::Index f = 0; f < a.triangles.rows(); ++f) {
+    ASSERT_LT(a.triangles(f, 0), a.triangles(f, 1)) << "triangle " << f;
+    ASSERT_LT(a.triangles(f, 0), a.triangles(f, 2)) << "triangle " << f;
+    if (f > 0) {
+      const Eigen::RowVector3i s = a.triangles.row(f - 1), t = a.triangles.row(f);
+      ASSERT_TRUE(std::lexicographical_compare(s.data(), s.data() + 3, t.data(), t.data() + 3)) << "triangle " << f;
+    }
+  }
+}
+
 TEST(Mannequin, InconsistentLandmarksAreInputErrors) {
   DRAPE_SHARED_FILE(file, "garmentcode/mean_all.yaml");
   BodyMeasurements m = loadBodyMeasurements(file);

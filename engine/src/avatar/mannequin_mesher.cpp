@@ -10,7 +10,10 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <tuple>
+#include <vector>
 
 #include "avatar/mannequin_shape.h"
 #include "drape/avatar/mannequin.h"
@@ -39,6 +42,36 @@ double signedVolume(const TriangleMesh& mesh) {
     volume += a.dot(b.cross(c)) / 6.0;
   }
   return volume;
+}
+
+// The mesh in a canonical order: vertices sorted by position (x, then y, then z), each triangle starting at its
+// smallest index (orientation kept), triangles sorted. CGAL's complex hands its facets over in an order that follows
+// memory addresses, which differ from run to run; the vertices and triangles themselves do not.
+void canonicalOrder(TriangleMesh& mesh) {
+  const int n = static_cast<int>(mesh.vertices.rows());
+  std::vector<int> order(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) order[static_cast<size_t>(i)] = i;
+  auto position = [&](int i) {
+    return std::make_tuple(mesh.vertices(i, 0), mesh.vertices(i, 1), mesh.vertices(i, 2));
+  };
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return position(a) < position(b); });
+  std::vector<int> newIndex(static_cast<size_t>(n));
+  Eigen::MatrixX3d vertices(n, 3);
+  for (int k = 0; k < n; ++k) {
+    newIndex[static_cast<size_t>(order[static_cast<size_t>(k)])] = k;
+    vertices.row(k) = mesh.vertices.row(order[static_cast<size_t>(k)]);
+  }
+  std::vector<std::array<int, 3>> triangles(static_cast<size_t>(mesh.triangles.rows()));
+  for (size_t f = 0; f < triangles.size(); ++f) {
+    std::array<int, 3> t;
+    for (int c = 0; c < 3; ++c) t[static_cast<size_t>(c)] = newIndex[static_cast<size_t>(mesh.triangles(static_cast<int>(f), c))];
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    triangles[f] = t;
+  }
+  std::sort(triangles.begin(), triangles.end());
+  mesh.vertices = std::move(vertices);
+  for (size_t f = 0; f < triangles.size(); ++f)
+    for (int c = 0; c < 3; ++c) mesh.triangles(static_cast<int>(f), c) = triangles[f][static_cast<size_t>(c)];
 }
 
 }  // namespace
@@ -100,6 +133,7 @@ TriangleMesh makeMannequin(const BodyMeasurements& measurements, const Mannequin
   // Outward orientation, and the soles exactly on the floor.
   if (signedVolume(mesh) < 0.0) mesh.triangles.col(1).swap(mesh.triangles.col(2));
   mesh.vertices.col(1).array() -= mesh.vertices.col(1).minCoeff();
+  canonicalOrder(mesh);
   return mesh;
 }
 
