@@ -83,7 +83,7 @@ inline std::filesystem::path defaultScene() {
 // pause "after n reports" need them: the worker can outpace the UI thread and finish a coarse drape before the
 // pause arrives.
 inline std::vector<std::pair<std::string, std::string>> unendingDrapeOverrides() {
-  return {{"solver.max_sim_time", "1000"}, {"solver.newton.early_stop_threshold", "0"}};
+  return {{"solver.max_sim_time", "1000"}, {"solver.newton.rest_speed", "0"}};
 }
 
 // A shown main window with the coarse default scene (plus `extra` settings) open and its first snapshot

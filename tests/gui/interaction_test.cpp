@@ -289,7 +289,7 @@ TEST_F(InteractionTest, FabricChangeDuringADrapeRestartsFromTheLastPreviewState)
   // worker could otherwise finish the drape before the UI thread pauses it.
   ASSERT_TRUE(window->document()->setSettings({{"solver.max_steps", "100000"},
                                                {"solver.max_sim_time", "1000"},
-                                               {"solver.newton.early_stop_threshold", "0"}},
+                                               {"solver.newton.rest_speed", "0"}},
                                               "Long drape"));
   ASSERT_TRUE(waitUntil([&] { return controller()->runState() != qt::RunState::Running; }));
   ASSERT_TRUE(waitUntil([&] { return controller()->runState() == qt::RunState::Paused; }));

@@ -39,6 +39,24 @@ TEST(Settings, UnknownKeyListsEveryValidKey) {
   }
 }
 
+// A scene written for a setting that was replaced is refused with a line that names the replacement.
+TEST(Settings, ReplacedKeysNameTheirReplacement) {
+  Settings s;
+  const std::vector<std::pair<std::string, std::string>> replaced = {
+      {"solver.newton.early_stop_threshold", "solver.newton.rest_speed"}, {"solver.damping.stretch", "fabric.damping"}};
+  for (const auto& [old, replacement] : replaced) {
+    EXPECT_FALSE(Settings::find(old)) << old;
+    ASSERT_TRUE(Settings::find(replacement)) << replacement;
+    try {
+      s.set(old, "0", "scene.json");
+      ADD_FAILURE() << old << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("scene.json: the setting '" + old + "' is replaced by " + replacement, 0), 0u)
+          << e.what();
+    }
+  }
+}
+
 TEST(Settings, EverySpecDefaultIsValid) {
   for (const auto& spec : Settings::specs()) {
     Settings s;

@@ -157,13 +157,18 @@ double NewtonSolver::kineticEnergyPercentile() const {
   return percentile(std::move(ke), m_settings.kineticPercentile);
 }
 
+double NewtonSolver::speedPercentile() const {
+  std::vector<double> speed(m_mass.size());
+  for (size_t i = 0; i < speed.size(); ++i) speed[i] = m_mass(i) > 0.0 ? m_v.segment<3>(3 * i).norm() : 0.0;
+  return percentile(std::move(speed), m_settings.kineticPercentile);
+}
+
 bool NewtonSolver::residualBelowRest(const Eigen::VectorXd& b) const {
   if (!m_nearRest) return true;
-  // The velocity error b_i / m_i of vertex i, as kinetic energy.
-  std::vector<double> ke(m_mass.size());
-  for (size_t i = 0; i < ke.size(); ++i)
-    ke[i] = m_mass(i) > 0.0 ? 0.5 * b.segment<3>(3 * i).squaredNorm() / m_mass(i) : 0.0;
-  return percentile(std::move(ke), m_settings.kineticPercentile) < m_settings.earlyStopThreshold;
+  // The velocity error |b_i| / m_i of vertex i.
+  std::vector<double> error(m_mass.size());
+  for (size_t i = 0; i < error.size(); ++i) error[i] = m_mass(i) > 0.0 ? b.segment<3>(3 * i).norm() / m_mass(i) : 0.0;
+  return percentile(std::move(error), m_settings.kineticPercentile) < m_settings.restSpeed;
 }
 
 // Right-hand side of eq. 4: b = M (v_n - v) - h dE/dx(x); its norm is the Newton residual.
@@ -377,7 +382,7 @@ NewtonStepReport NewtonSolver::step() {
     m_energies[k]->setRecordStepStartGradient(relaxing && s.stepStartGradients && !s.relaxationGuess &&
                                               !m_quasiNewton);
   m_nearRest = s.restAwareConvergence && !relaxing &&
-               kineticEnergyPercentile() < s.restAwareFactor * s.earlyStopThreshold;
+               speedPercentile() < s.restAwareFactor * s.restSpeed;
   Eigen::VectorXd x, v;
   NewtonStatus keptStatus = NewtonStatus::Converged;
   while (true) {
@@ -424,7 +429,8 @@ NewtonStepReport NewtonSolver::step() {
     m_goodSteps = 0;
   }
   report.kineticPercentile = kineticEnergyPercentile();
-  if (relaxing || report.kineticPercentile >= s.earlyStopThreshold)
+  report.speedPercentile = speedPercentile();
+  if (relaxing || report.speedPercentile >= s.restSpeed)
     m_restSince = -1.0;
   else if (m_restSince < 0.0)
     m_restSince = m_time - m_h;

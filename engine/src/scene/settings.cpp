@@ -1,5 +1,6 @@
 #include "drape/scene/settings.h"
 
+#include <map>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -108,8 +109,20 @@ std::string Settings::validKeys() {
   return list;
 }
 
+// Settings that were replaced: a scene that names one is told what to write instead.
+const std::map<std::string, std::string>& retiredSettings() {
+  static const std::map<std::string, std::string> retired = {
+      {"solver.newton.early_stop_threshold",
+       "solver.newton.rest_speed (m/s, the 99th percentile of vertex speeds; a kinetic energy in J stopped a light or "
+       "finely meshed garment while it still moved)"},
+      {"solver.damping.stretch", "fabric.damping (the fabric's own stretch dissipation)"}};
+  return retired;
+}
+
 void Settings::set(const std::string& key, const std::string& value, const std::string& context) {
   const SettingSpec* spec = find(key);
+  if (!spec && retiredSettings().count(key))
+    throw InputError(context + ": the setting '" + key + "' is replaced by " + retiredSettings().at(key));
   if (!spec) throw InputError(context + ": unknown setting '" + key + "'; valid settings: " + validKeys());
   if (value.empty() && spec->defaultValue.empty()) {
     m_values.erase(spec->key);  // back to unset

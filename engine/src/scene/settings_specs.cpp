@@ -164,12 +164,13 @@ const std::vector<SettingSpec>& Settings::specs() {
        "many times h_max: it settles a garment already near rest, where the step barely moves the result (1: the step "
        "of a drape from the placed garment)",
        1, 100},
-      {"solver.newton.early_stop_threshold", T::Number, "1e-8", "J",
-       "early stop: 99th percentile of per-vertex kinetic energy", 0, 1},
+      {"solver.newton.rest_speed", T::Number, "0.02", "m/s",
+       "early stop: the drape is at rest when the 99th percentile of vertex speeds stays below this for "
+       "early_stop_window (0: never)", 0, 10},
       {"solver.newton.rest_aware_convergence", T::Boolean, "true", "",
-       "a step below tau_n iterates on (up to max_iterations) while its residual's velocity error, as kinetic energy, "
-       "is above the early-stop threshold: near rest tau_n alone accepts errors that keep the garment creeping"},
-      {"solver.newton.early_stop_window", T::Number, "0.1", "s", "early stop: time the threshold must hold", 0, 10},
+       "a step below tau_n iterates on (up to max_iterations) while its residual's velocity error is above the rest "
+       "speed: near rest tau_n alone accepts errors that keep the garment creeping"},
+      {"solver.newton.early_stop_window", T::Number, "0.1", "s", "early stop: time the rest speed must hold", 0, 10},
       {"solver.cg.tolerance", T::Number, "1e-2", "",
        "PCG relative tolerance tau_cg (below 1e-6 the single-precision preconditioner cannot reach it and Newton's steps "
        "split down to nothing)", 1e-6, 0.9},

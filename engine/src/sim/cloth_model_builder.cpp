@@ -72,7 +72,7 @@ newton::NewtonSettings newtonSettingsFrom(const Scene& scene) {
   n.relaxation = s.flag("solver.newton.relaxation");
   n.relaxationHoldStep = s.text("solver.newton.relaxation_step") == "hold";
   n.relaxationGuess = s.flag("solver.newton.relaxation_guess");
-  n.earlyStopThreshold = s.number("solver.newton.early_stop_threshold");
+  n.restSpeed = s.number("solver.newton.rest_speed");
   n.earlyStopWindow = s.number("solver.newton.early_stop_window");
   n.restAwareConvergence = s.flag("solver.newton.rest_aware_convergence");
   n.linear.tolerance = s.number("solver.cg.tolerance");
