@@ -93,8 +93,8 @@ bool CoarseSpace::factorize(const BlockMatrix& a) {
   }
   if (!m_factor->analysed) {
     // A fill-reducing ordering, the better of minimum degree and nested dissection. CHOLMOD's default strategy kept
-    // the rows' own (RCM-derived) order here: 1.8x the factor's entries and 3x the factorisation's flops of nested
-    // dissection on the coarse twisting square (docs/BENCHMARKS.md, "Stop 30").
+    // the rows' own (RCM-derived) order here, whose factor has far more entries and costs far more flops than nested
+    // dissection's.
     cholmod_common& common = m_factor->llt.cholmod();
     common.nmethods = 2;
     common.method[0].ordering = CHOLMOD_AMD;

@@ -25,10 +25,9 @@ namespace {
 // to the solution of A x = b in the A-norm, is g.b / g.Ag; it is never further from the solution than 0. The guess
 // is taken as it is unless that multiple is below 1/8 (g points against the solution, or is far too long); then it
 // is taken with it (0, a cold start, when g.Ag is not positive and finite). Where the garment chatters, the velocity
-// change flips from step to step, and the last step's change, the Newton solver's guess, is about minus this step's:
-// on the t-shirt its best multiple was -0.9 to -1 and its residual twice |b|, and the PCG needed twice the
-// iterations of the turned-round guess (docs/BENCHMARKS.md, stop 41). A guess somewhat too long but right in its
-// smooth part is kept: for the block-Jacobi PCG it is a better start than its scaled copy.
+// change flips from step to step, and the last step's change, the Newton solver's guess, is about minus this step's;
+// started from it, the PCG first has to undo it. A guess somewhat too long but right in its smooth part is kept: for
+// the block-Jacobi PCG it is a better start than its scaled copy (docs/BENCHMARKS.md, "Findings worth keeping").
 double guessScale(double xb, double xax) {
   if (!(xax > 0.0) || !std::isfinite(xax) || !std::isfinite(xb)) return 0.0;
   const double best = xb / xax;

@@ -274,9 +274,8 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
   newton::NewtonSettings settings = newtonSettingsFrom(m_scene);
   // The relaxation settles a placed garment (seams apart, pre-stretch); the preview has already done that.
   // Its time steps may be longer: it settles a garment already near rest, whose result they barely move (docs/
-  // BENCHMARKS.md, "The drape after the preview steps 3 ms"). They start at h_max and grow: the state the preview
-  // hands over (its fabric softened, stop 37) may need a short first step, and starting at the cap cost the
-  // trousers 10-13 time splits (stop 38).
+  // BENCHMARKS.md, "Findings worth keeping"). They start at h_max and grow: the state the preview hands over (its
+  // fabric softened) may need a short first step, and a first step at the cap is split many times.
   if (positions.rows() > 0) {
     settings.relaxation = m_scene.settings.flag("solver.newton.relaxation_after_preview");
     settings.startStep = settings.hMax;
@@ -290,7 +289,7 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
 
 // Without a retry (solver.preview.retry_courant_limit 0), the tear message suggests softening the preview's fabric
 // above this Courant number (preview_fabric.h): 5 kept the default t-shirt whole in every fabric preset, 8 did not
-// (docs/BENCHMARKS.md, stop 36).
+// (docs/BENCHMARKS.md, "Findings worth keeping").
 constexpr double kSoftenedCourant = 5.0;
 
 double Simulation::previewMaxTime() const {
@@ -364,7 +363,7 @@ std::string Simulation::tearReason(const StepReport& report, const Eigen::Matrix
 
 // The first closing's overshoots that recover stay below 1,000 % on the library scenes (the trousers: about 600 % for
 // 4 ms at the default step); the two layers of the shirt over a skirt, broken in their first step, sat at 3,440 % for
-// the whole quasi-static start (docs/BENCHMARKS.md, stop 34).
+// the whole quasi-static start.
 constexpr double kStuckOvershoot = 4.0;  // times failure_strain
 constexpr double kStuckTime = 0.003;     // s of scene time
 

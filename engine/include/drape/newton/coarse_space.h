@@ -2,7 +2,7 @@
 // rows are grouped into aggregates of about k connected vertices, P (3|V| x 3m) maps each aggregate's three
 // translations to its vertices, and the preconditioner adds P (P^T A P)^-1 P^T r to block-Jacobi's z (additive
 // two-level Schwarz). Block-Jacobi alone leaves the long-wavelength stretch modes of a stiff fabric to the CG
-// iterations; the coarse solve removes them (docs/BENCHMARKS.md, "Two-level PCG").
+// iterations; the coarse solve removes them (docs/BENCHMARKS.md, "Table 7").
 #pragma once
 
 #include <Eigen/Core>

@@ -95,8 +95,8 @@ struct NewtonSettings {
   // is factorised from the matrix of a step's first Newton iteration when the elastic Hessian was assembled afresh
   // there (hessianReuseSteps), or when h changed, and kept through later Newton iterations and the contact, friction
   // and drag-spring blocks that change in every iteration. Not lagged: refactorised for every solve whose matrix
-  // changed (every solve in scenes with contact). On the 1 cm t-shirt lagging cut the factorisations 3.5x with no more
-  // PCG iterations (docs/BENCHMARKS.md, stop 42).
+  // changed (every solve in scenes with contact). Lagged, it is factorised several times less often, with no more
+  // PCG iterations.
   bool coarseLagged = true;
   // The coarse level is used from the solve after one that needed at least this many PCG iterations with
   // block-Jacobi alone, until a two-level solve needs fewer than a quarter of it (0: always). On a soft garment

@@ -33,9 +33,9 @@ class ContactFactor {
   int updates() const { return m_updates; }                // calls that modified the factor by update/downdate
   // Changed DOFs up to which the factor of an n x n K is updated rather than refactorised: 64, or n / 32 on larger
   // systems. An update costs about a path of the elimination tree per changed DOF, a refactorisation the whole
-  // factor; on the 1 cm t-shirt (10,456 DOFs) 0.04-0.08 ms per changed DOF against 29 ms, so a fixed 64 sent the
-  // assembly's large changes (66 of its 787 solves) to refactorisations costing as much as 400-700 updates
-  // (docs/BENCHMARKS.md, "Stop 44").
+  // factor; on a 10k-vertex garment a refactorisation costs as much as several hundred changed DOFs' updates, so a
+  // fixed 64 sent the assembly's large changes to refactorisations (docs/BENCHMARKS.md, "Local step and contact
+  // solve").
   static int maxUpdates(int n) { return n / 32 > 64 ? n / 32 : 64; }
 
  private:

@@ -6,7 +6,7 @@
 // fabric's stiffness outweighs the mass term M / h^2 by far, one solve carries the panels' whole elastic response,
 // and the seams close straight through the body where vertex contacts cannot steer them. The default t-shirt tore
 // its sleeves this way in every fabric preset but jersey (Courant number 18-26 at 1/480 s against jersey's 4.7;
-// docs/BENCHMARKS.md, "The preview's fabric"). The Newton drape keeps the fabric's own stiffness.
+// docs/BENCHMARKS.md, "Findings worth keeping"). The Newton drape keeps the fabric's own stiffness.
 #include "drape/newton/cloth_model.h"
 
 namespace drape::pd {

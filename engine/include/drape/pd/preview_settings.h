@@ -69,8 +69,8 @@ struct PreviewSettings {
   double relaxationTime = 0.0;
   // > 0: each fabric's stretch and shear stiffness is capped so that an in-plane elastic wave crosses at most this
   // many mean edge lengths in one step of timeStep (preview_fabric.h): 5 keeps the default t-shirt's preview whole
-  // in every fabric preset (docs/BENCHMARKS.md, stops 36-37). 0: the fabric's own stiffness, as a scene's preview
-  // run alone by default (solver.preview.courant_limit); the full pipeline's preview uses 5
+  // in every fabric preset (docs/BENCHMARKS.md, "Findings worth keeping"). 0: the fabric's own stiffness, as a
+  // scene's preview run alone by default (solver.preview.courant_limit); the full pipeline's preview uses 5
   // (solver.preview.pipeline_courant_limit, Simulation).
   double courantLimit = 0.0;
 
@@ -90,8 +90,9 @@ struct PreviewSettings {
   // Before the garment is sewn, targets are also held within every step no longer than this (seconds; 0: none).
   // A held target pins its DOF for the step, like static friction; over a short step a vertex the stitches drag
   // moves less than the contact thickness, so the pin costs nothing and stops targets cycling on body creases.
-  // Over longer steps pins tear a garment that is still closing its seams (docs/BENCHMARKS.md, stop 34). Steps
-  // halved below it (maxHalvings) hold too. Scenes default to 1/480 s (solver.preview.hold_targets_step).
+  // Over longer steps pins tear a garment that is still closing its seams (docs/BENCHMARKS.md, "Findings worth
+  // keeping"). Steps halved below it (maxHalvings) hold too. Scenes default to 1/480 s
+  // (solver.preview.hold_targets_step).
   double holdTargetsStep = 0.0;
   // Once every stitch gap has stayed below sewnGap (metres) for sewnTime (seconds of scene time, ending with a
   // converged step), the garment counts as sewn, for good: from the next step on, avatar contact targets are held

@@ -3,7 +3,7 @@
 // once (the x, y, z coordinates of the Projective Dynamics global step, pd-dd eq. 3). CHOLMOD computes the
 // ordering and the simplicial factor once; the solves are our own loops so that each non-zero of L is read once
 // in the forward and once in the backward pass for all three columns, with no allocation (the per-iteration
-// bandwidth floor of the global step; see docs/BENCHMARKS.md, "Time per L-G iteration").
+// bandwidth floor of the global step; see docs/BENCHMARKS.md, "L-G iteration at 100k vertices").
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <vector>

@@ -219,9 +219,8 @@ class Simulation {
   // " (triangle t of panel p, at x .., y .., z .. m)": report's most stretched triangle, its centre in x.
   std::string stretchedTriangle(const StepReport& report, const Eigen::MatrixX3d& x) const;
   // Why a step that handed over to the drape a triangle stretched past solver.preview.handoff_strain starts the
-  // preview over with its contact targets free, when retriesUnheld(); else empty (the held targets locked a seam: the
-  // denim GarmentCode shirt handed over at 262 %, and its drape took twice Newton's alone; docs/BENCHMARKS.md, stop
-  // 39).
+  // preview over with its contact targets free, when retriesUnheld(); else empty (held targets can lock a seam
+  // stretched, and a drape from such a hand-over takes longer than Newton's alone; docs/ENGINE.md, "Design notes").
   std::string overstretchedHandOverReason(const StepReport& report, const Eigen::MatrixX3d& x) const;
   // The longest preview stage: solver.preview.max_time, or in the full pipeline softened_max_time when that is
   // shorter and the preview's fabric is softened (previewCourantLimit() below the fabric's Courant number).
