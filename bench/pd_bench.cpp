@@ -284,7 +284,7 @@ void interactiveTable(const std::string& sceneFile, const std::string& from, int
       {"dual CG, warm, halving", [](PreviewSettings& s) { s.contactSolve = K::DualCgThenPcg; }},
       {"factor, fixed h", [](PreviewSettings& s) { s.contactSolve = K::Factor; s.maxHalvings = 0; }},
       {"factor, halving (default)", [](PreviewSettings& s) { s.contactSolve = K::Factor; }},
-      // Stop 20's default: no sewn regime (contact targets re-projected every iteration, inertial friction load).
+      // No sewn regime: contact targets re-projected every iteration, friction bounded by the inertial load.
       {"sewn, Gauss-Seidel local", [](PreviewSettings& s) { s.sewnLocalStep = LocalStepKind::GaussSeidel; }},
       {"sewn_gap 0", [](PreviewSettings& s) { s.sewnGap = 0.0; }},
       {"sewn_gap 0, fixed h", [](PreviewSettings& s) { s.sewnGap = 0.0; s.maxHalvings = 0; }},

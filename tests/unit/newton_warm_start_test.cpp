@@ -2,7 +2,7 @@
 // closest to the solution in the A-norm) is below 1/8, i.e. it points against the solution or is far too long; then
 // it is taken with that multiple. Where the garment chatters, the Newton solver's guess (the last step's velocity
 // change) is about minus the solution, and started from it unscaled the PCG needed more iterations than from 0
-// (docs/BENCHMARKS.md, stop 41).
+// (docs/ENGINE.md, "Design notes").
 #include <gtest/gtest.h>
 
 #include <cmath>

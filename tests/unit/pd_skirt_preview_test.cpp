@@ -1,8 +1,7 @@
 // Issue 6: the previews of the lower-body garments (the library A-line skirt and trousers, a tube on a sphere) keep
-// them on the body. The A-line skirt: Before the preview's quasi-static start
-// (solver.preview.relaxation_time 0.05 s, stop 23) the first steps closed the side seams at metres per second, the
-// skirt passed through the hips and hands between its vertices by t = 0.2 s and fell off the mannequin: at 0.3 s no
-// vertex touched the body, and the full pipeline ended "MaxSimTime" with the skirt in free fall 9 m below.
+// them on the body. The A-line skirt: without the preview's quasi-static start (solver.preview.relaxation_time
+// 0.05 s) the first steps close the side seams at metres per second, the skirt passes through the hips and hands
+// between its vertices and falls off the mannequin.
 // Runs ~5 s.
 #include <gtest/gtest.h>
 
@@ -59,7 +58,7 @@ TEST(PdSkirtPreview, SkirtStaysOnTheHips) {
   }
   // The waistband may settle a few centimetres onto the hips (it started above the natural waist), not past them.
   EXPECT_GT(top, waist - 0.08) << "the waistband slid from " << waist << " m to " << top << " m";
-  // Stop 26: at the paper's 1/120 s step the waistband slid 5 cm by 0.4 s (6 cm by 0.8 s; Newton's drape: 1.5 cm).
+  // At the paper's 1/120 s step the waistband slides down the hips; at the default 1/480 s it holds.
   const double bandDrop = bandStart - meanHeight(x, band);
   std::printf("[ PdSkirtPreview ] waistband %.1f mm lower after %.2f s\n", 1e3 * bandDrop, sim.time());
   EXPECT_LT(bandDrop, 0.04);
@@ -67,7 +66,7 @@ TEST(PdSkirtPreview, SkirtStaysOnTheHips) {
   EXPECT_EQ(inside, 0);
 }
 
-// Stop 26 (docs/BENCHMARKS.md, "Why the preview's waistbands slide"): a flared wool tube sewn around a sphere with its
+// docs/BENCHMARKS.md, "Why the preview's waistbands slide": a flared wool tube sewn around a sphere with its
 // waist (0.8 m round) 9 cm above the equator (0.94 m round). The waist cannot pass the equator without stretching
 // 18 %; Newton's drape keeps it at 1.087 m. At the paper's 1/120 s preview step it slid over the equator (0.88 m at
 // 0.6 s, 24 % stretched); at the default 1/480 s it stays.
@@ -92,8 +91,8 @@ TEST(PdSkirtPreview, WaistbandStaysAboveTheEquatorOfASphere) {
   EXPECT_TRUE(sim.previewFailure().empty()) << sim.previewFailure();
 }
 
-// Stop 26: at the paper's 1/120 s preview step the library trousers' hems closed through the feet (their seams close
-// within a few steps, the hems 45 cm round against a foot 57-60 cm round) and the preview tore: 554 % at 0.052 s.
+// At the paper's 1/120 s preview step the library trousers' hems close through the feet (their seams close within a
+// few steps, the hems 45 cm round against a foot 57-60 cm round) and the preview tears.
 // At the default 1/480 s the hems ride up onto the insteps, as in Newton's drape.
 TEST(PdTrousersPreview, HemsDoNotTearAtTheFeet) {
   SceneRequest request;

@@ -1,8 +1,7 @@
 // Issue 6: the preview of the t-shirt on the default mannequin settles without NaN and without vertices inside the
-// body, and the full pipeline ends in the Newton drape. Before the preview's time step could halve (stop 12) this
-// failed: at the paper's 1/120 s the L-G loop never converged (armpit vertices cycled between contact targets on
-// the crease's two surfaces), the largest triangle stretch grew to 24 by t = 1 s and the shirt fell through the
-// body. Runs ~1-2 min.
+// body, and the full pipeline ends in the Newton drape. It needs the preview's step halving: at a fixed 1/120 s the
+// L-G loop never converges (armpit vertices cycle between contact targets on the crease's two surfaces), the
+// triangles stretch and the shirt falls through the body. Runs ~1-2 min.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -47,8 +46,8 @@ OffBody offBody(const collision::AvatarCollider& body, const Simulation& sim, co
 
 }  // namespace
 
-// The first two tests keep the preview's start of stops 12-22 (no quasi-static start): their stretch and slide
-// bounds were set on it. With the default quasi-static start (stop 23) the sewn preview's shoulders stretch to 99 %
+// The first two tests run the preview without its quasi-static start (relaxation_time 0): their stretch and slide
+// bounds are set for that start. With the default quasi-static start the sewn preview's shoulders stretch to 99 %
 // and the shirt drops 25 mm in the 0.5 s after it is sewn (the under-converged PD elasticity carrying the whole shirt
 // from the shoulders, instead of a back hem perched on the small of the back); QuasiStaticStartKeepsTheBackHemDown
 // covers the default.
@@ -80,10 +79,9 @@ TEST(PdTshirtPreview, DefaultSceneStaysOnTheBodyAndHandsOverToTheDrape) {
 }
 
 // Once sewn (solver.preview.sewn_gap), the preview holds contact targets within a step and lets the cloth's tension
-// load friction: the steps converge at the paper's 1/120 s again, and the shirt stays where it is. Before (stop 20,
-// and with sewn_gap 0 from the same sewn state), 1/120 s steps hit the L-G cap and the shirt slid 4-9 cm down the
-// body within 0.5 s (docs/BENCHMARKS.md). The scenes' default step is 1/480 s since stop 26; this test keeps the
-// paper's step, its subject.
+// load friction: the steps converge at the paper's 1/120 s, and the shirt stays where it is. Without the sewn regime
+// (sewn_gap 0, from the same sewn state), 1/120 s steps hit the L-G cap and the shirt slides down the body. The
+// scenes' default step is 1/480 s; this test keeps the paper's step, its subject.
 TEST(PdTshirtPreview, SewnShirtConvergesAtThePapersStepAndStaysPut) {
   Simulation sim(defaultScene({{"solver.stage", "preview"},
                                {"solver.max_sim_time", "3"},
@@ -144,9 +142,8 @@ TEST(PdTshirtPreview, SewnShirtConvergesAtThePapersStepAndStaysPut) {
   EXPECT_EQ(off.away, 0);
 }
 
-// Stop 23: without the quasi-static start, the stitches' pull of the first steps, carried on as velocity, threw the
-// back hem up (6.6 cm within 5 ms at one vertex) onto the small of the back, where the drape kept it (the pipeline's
-// drape ended 24.8 mm from Newton alone's, the back hem 6 cm higher). With it (the default), the hem comes down.
+// Without the quasi-static start, the stitches' pull of the first steps, carried on as velocity, throws the back hem
+// up onto the small of the back, where the drape keeps it. With it (the default), the hem comes down.
 TEST(PdTshirtPreview, QuasiStaticStartKeepsTheBackHemDown) {
   Simulation sim(defaultScene({{"solver.stage", "full"}}));
   const collision::AvatarCollider body(mergedColliders(sim.scene()));
@@ -185,10 +182,10 @@ TEST(PdTshirtPreview, QuasiStaticStartKeepsTheBackHemDown) {
   EXPECT_EQ(sim.stage(), "drape");
 }
 
-// At 1 cm the preview could not sew the t-shirt by itself (stop 21): every step hit the L-G cap at 1/480 s, the
-// armhole stitches stayed open and the p99 stretch was 591 % at 0.05 s, with the arms through the sleeves. It now
-// sews it on a 2 cm meshing of the pattern (solver.preview.assembly_edge_length) and carries the sewn garment over to
-// the 1 cm mesh, where it counts as sewn again and keeps the shirt on the body.
+// At 1 cm the preview cannot sew the t-shirt by itself: every step hits the L-G cap at 1/480 s, the armhole
+// stitches stay open and the arms pass through the sleeves. It sews it on a 2 cm meshing of the pattern
+// (solver.preview.assembly_edge_length) and carries the sewn garment over to the 1 cm mesh, where it counts as sewn
+// again and keeps the shirt on the body.
 TEST(PdTshirtPreview, FineShirtIsSewnOnACoarserMeshAndCarriedOver) {
   Simulation sim(
       defaultScene({{"solver.stage", "preview"}, {"mesh.target_edge_length", "0.01"}, {"solver.max_sim_time", "3"}}));
@@ -258,7 +255,7 @@ TEST(PdTshirtPreview, FineShirtIsSewnOnACoarserMeshAndCarriedOver) {
   EXPECT_EQ(off.away, 0);
 }
 
-// Stop 34: before the shirt is sewn, contact targets are held within steps of at most 1/480 s
+// Before the shirt is sewn, contact targets are held within steps of at most 1/480 s
 // (solver.preview.hold_targets_step). At that step a held target, which pins its vertex for the step, costs the
 // closing seams nothing, and it stops armpit vertices cycling between targets: fewer L-G iterations and no capped
 // step. Over longer steps the pins tore the shirt (700 % at 1/120 s), so there the targets are not held until it is

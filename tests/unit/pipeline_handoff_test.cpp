@@ -142,7 +142,7 @@ TEST(PipelineHandoff, PreviewHandsOverOnceTheHandoffSpeedHeldForTheWindow) {
   EXPECT_GE(handoff, relaxation + 0.1 - 1e-9);
   EXPECT_LT(handoff, relaxation + 0.15);
   // A relaxing cloth moves at most g h (0.08 m/s at 1/120 s) whatever its forces: no window opens before the
-  // relaxation ends (before stop 23 this one handed over at 0.1 s, halfway through its relaxation).
+  // relaxation ends (otherwise this one would hand over at 0.1 s, halfway through its relaxation).
   Simulation relaxing(coarseTablecloth(
       {{"solver.preview.handoff_speed", "100"}, {"solver.preview.relaxation_time", "0.2"}, ownStiffness}));
   firstDrapeStep(relaxing, &handoff);
@@ -157,8 +157,8 @@ TEST(PipelineHandoff, PreviewHandsOverOnceTheHandoffSpeedHeldForTheWindow) {
 }
 
 // The coarse assembly (solver.preview.assembly_edge_length) has solver.preview.max_time from the start; the garment's
-// own mesh, carried over from it, gets max_time again for its own settling (stop 27: the 1 cm t-shirt handed over
-// 0.16 s after its own mesh was sewn made the drape 1.3x slower than 0.5 s after the carry-over).
+// own mesh, carried over from it, gets max_time again for its own settling: handed over soon after its own mesh is
+// sewn, the garment is still moving and the drape takes longer.
 TEST(PipelineHandoff, OwnMeshGetsThePreviewTimeAgainAfterTheCoarseAssembly) {
   Simulation sim(libraryScene("default.json", {{"solver.stage", "full"},
                                                {"mesh.target_edge_length", "0.02"},
@@ -213,7 +213,7 @@ TEST(PipelineHandoff, TornPreviewIsGivenUpForTheDrapeFromThePlacedGarment) {
   EXPECT_TRUE(kept.previewFailure().empty());
 
   // With the default quasi-static start (0.05 s), the same overshoot falls inside it and is not counted either: the
-  // seams' first closing may overshoot there and recover (docs/BENCHMARKS.md, stop 24).
+  // seams' first closing may overshoot there and recover (docs/ENGINE.md, "Design notes").
   Simulation relaxing(libraryScene("default.json", {{"solver.stage", "full"}, {"solver.preview.failure_strain", "2"}}));
   const StepReport overshoot = relaxing.step();
   ASSERT_GT(overshoot.maxStrain, 2.0);
@@ -222,10 +222,10 @@ TEST(PipelineHandoff, TornPreviewIsGivenUpForTheDrapeFromThePlacedGarment) {
   EXPECT_TRUE(relaxing.previewFailure().empty());
 }
 
-// Stop 34: the two layers of the shirt over a skirt break in their first preview step (3,440 %) and stay broken.
-// The tear check used to wait for the end of the quasi-static start (0.05 s: 97 capped steps, 168 s of a 254 s run);
-// a stretch that stays past 4x failure_strain for 3 ms is now a tear during it, too. One that comes down sooner is
-// not: the default scene's first closing, with a failure strain low enough for it to count.
+// The two layers of the shirt over a skirt break in their first preview step and stay broken. Rather than waiting
+// for the end of the quasi-static start (0.05 s of capped steps), a stretch that stays past 4x failure_strain for
+// 3 ms is a tear during it, too. One that comes down sooner is not: the default scene's first closing, with a
+// failure strain low enough for it to count.
 TEST(PipelineHandoff, StretchThatStaysExtremeDuringTheQuasiStaticStartIsATear) {
   Simulation sim(libraryScene("shirt_over_skirt.json",
                               {{"solver.stage", "full"}, {"solver.preview.retry_without_held_targets", "false"}}));

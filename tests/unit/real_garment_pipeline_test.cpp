@@ -3,8 +3,8 @@
 // front, back and sleeves meet, at 250-350 % stretch until it tears at the hand-over (545 % at 0.076 s). Started over
 // with the targets free (solver.preview.retry_without_held_targets), it sews the shirt and hands it over whole, so
 // the drape starts from the preview's state instead of the placed garment. In denim it does not tear but is about to
-// hand over at 262 %, past solver.preview.handoff_strain, which starts it over the same way (docs/BENCHMARKS.md,
-// stop 39).
+// hand over at 262 %, past solver.preview.handoff_strain, which starts it over the same way (docs/ENGINE.md,
+// "Design notes").
 #include <gtest/gtest.h>
 
 #include <string>

@@ -34,7 +34,7 @@ bool contains(const std::string& text, const std::string& part) {
 }
 
 // Cotton shirting: Courant number about 26 at the default preview step; its preview tears at about 0.051 s
-// (docs/BENCHMARKS.md, stop 36).
+// (docs/BENCHMARKS.md, "Findings worth keeping").
 TEST(PreviewRetry, TornCottonPreviewStartsOverSofterFromThePlacedGarmentAndStaysWhole) {
   const Overrides ownStiffness = {{"solver.stage", "full"}, {"solver.preview.pipeline_courant_limit", "0"}};
   Simulation sim(defaultTshirt("cotton_shirting", ownStiffness));
