@@ -4,6 +4,7 @@
 set(DRAPE_SLOW_TESTS
   AvatarFeatureContact.DefaultSceneBodyDoesNotShowThroughTheShirt
   BroadTallBody.ShortDrapeOfTheFittedShirtIsLessStrained
+  CliBatch.AKilledBatchKeepsItsFinishedDrapesAndTheRerunRunsOnlyTheRest
   CliBatchSlurm.*
   CliBench.ExtremesGridReportsEveryCellAndItsVerdict
   CliMakeAvatar.BuildsTheSameMannequinFromMeasurementsInEveryRun
