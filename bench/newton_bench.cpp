@@ -161,9 +161,9 @@ void finish(Result& r) {
 // Cloth mode.
 
 // n x n vertex square of side 1 m in the x-y plane, hanging from its two top corners (cotton-like fabric).
-ClothModel hangingCloth(int n) {
-  ClothModel m;
-  TriangleFabric f;
+drape::model::ClothModel hangingCloth(int n) {
+  drape::model::ClothModel m;
+  drape::model::TriangleFabric f;
   f.stretchWarp = f.stretchWeft = 5000.0;
   f.shear = 250.0;
   f.bendWarp = f.bendWeft = 5e-6;

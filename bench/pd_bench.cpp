@@ -53,7 +53,7 @@ double timeSolve(const GlobalSolver& s, const Eigen::MatrixX3d& b, int reps) {
   return since(t) / reps;
 }
 
-newton::ClothModel grid(int n) {
+drape::model::ClothModel grid(int n) {
   GridClothOptions o;
   o.nx = n;
   o.ny = n;
@@ -78,7 +78,7 @@ void globalSolveTable(bool quick) {
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   const std::vector<int> sizes = quick ? std::vector<int>{60} : std::vector<int>{142, 245};  // 60k, 180k DOF
   for (int n : sizes) {
-    const newton::ClothModel model = grid(n);
+    const drape::model::ClothModel model = grid(n);
     PdSystem sys(model, PreviewSettings{});
     const Eigen::MatrixX3d b = randomRightHandSide(sys);
     const int reps = n > 200 ? 10 : 20;
@@ -115,7 +115,7 @@ struct RunResult {
   int steps = 0;
 };
 
-RunResult run(const newton::ClothModel& model, const PreviewSettings& s, int steps,
+RunResult run(const drape::model::ClothModel& model, const PreviewSettings& s, int steps,
               std::shared_ptr<const collision::AvatarCollider> collider = nullptr, int* pcg = nullptr,
               double* collisionTime = nullptr, int warmupSteps = 0) {
   PreviewSolver solver(model, s, collider);
@@ -149,7 +149,7 @@ void localStepTable(bool quick) {
       s.timeStep = h;
       s.tolerance = 1e-5;
       s.maxIterations = 200;
-      const newton::ClothModel model = grid(n);
+      const drape::model::ClothModel model = grid(n);
       s.localStep = LocalStepKind::GaussSeidel;
       const RunResult gs = run(model, s, 20);
       s.localStep = LocalStepKind::Jacobi;
@@ -197,7 +197,7 @@ void contactTable(bool quick) {
   o.horizontal = true;
   o.elevation = 0.33;
   o.pinTopCorners = false;
-  const newton::ClothModel model = makeGridCloth(o);
+  const drape::model::ClothModel model = makeGridCloth(o);
   auto collider = std::make_shared<collision::AvatarCollider>(makeIcosphere(Eigen::Vector3d::Zero(), 0.3, 5));
   for (ContactSolveKind kind : {ContactSolveKind::DualThenPcg, ContactSolveKind::Pcg}) {
     PreviewSettings s;
@@ -243,7 +243,7 @@ void interactiveTable(const std::string& sceneFile, const std::string& from, int
   const Scene scene = loadScene(request);
   const Garment garment = buildGarment(scene.pattern, meshingOptions(scene));
   const std::vector<int> pinned = resolvePins(scene, garment);
-  newton::ClothModel model = buildClothModel(scene, garment, pinned);
+  drape::model::ClothModel model = buildClothModel(scene, garment, pinned);
   if (!from.empty()) {
     const Eigen::MatrixX3d x = readGarmentPositions(from, garment);
     for (int v = 0; v < model.numVertices(); ++v) model.positions.segment<3>(3 * v) = x.row(v).transpose();
@@ -388,7 +388,7 @@ void interactiveTable(const std::string& sceneFile, const std::string& from, int
 // The DD global solve alone, repeated: its spread over many solves in one process is what tells a change to it
 // from the VM's noise (compare the minima of builds run alternately).
 void solveSpread(int side, int d, int reps) {
-  const newton::ClothModel model = grid(side);
+  const drape::model::ClothModel model = grid(side);
   PdSystem sys(model, PreviewSettings{});
   const Eigen::MatrixX3d b = randomRightHandSide(sys);
   tbb::task_arena arena(2);

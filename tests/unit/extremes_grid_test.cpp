@@ -1,7 +1,7 @@
 // The extremes grid (drape/sim/extremes_grid.h) on a real garment: the library t-shirt on the female mannequin, every
 // cell in the drape for the first 0.05 s (the seams closing, where the extremes bite first). Every cell must hold:
 // finite, diverged only where the garment exploded and the run said so, nothing inside the body beyond the contact
-// thickness. (The projective preview fails three cells, docs/BENCHMARKS.md "The extremes grid".) Slow tier
+// thickness. (The projective preview fails three cells, docs/EXTREMES.md.) Slow tier
 // (tests/slow_tests.cmake).
 #include <gtest/gtest.h>
 
@@ -43,7 +43,7 @@ TEST(ExtremesGrid, CellsCoverEveryPhysicsSettingAtBothEndsOfItsRange) {
   EXPECT_TRUE(atMin && atMax);
 }
 
-// Cells the drape does not hold yet (docs/BENCHMARKS.md, "The extremes grid"): the stiffest stretch (1e7 N/m) and the
+// Cells the drape does not hold yet (docs/EXTREMES.md): the stiffest stretch (1e7 N/m) and the
 // coarsest mesh (1 m edges) leave vertices inside the body beyond the contact thickness. They are run and reported,
 // and fail the test when they come to hold, so that this list is kept true.
 const std::set<std::string> kOpen = {"stretch max", "mesh edge max"};

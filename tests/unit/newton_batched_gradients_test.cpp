@@ -20,7 +20,7 @@ namespace {
 // A perturbed 11 x 11 grid (200 triangles, 280 hinges: neither a multiple of 8 when one triangle row is cut) with
 // the start positions xn and the end positions x of a step.
 struct Step {
-  ClothModel model;
+  drape::model::ClothModel model;
   Eigen::VectorXd xn, x, v;
 };
 

@@ -173,7 +173,7 @@ TEST(CoarseSpace, TwoLevelPcgMeetsTheToleranceInFewerIterations) {
 TEST(CoarseSpace, SolverEngagesTheCoarseLevelOnlyWhereSolvesAreLong) {
   const int n = 30;
   auto coarseSolves = [&](double stiffness, int aggregate, int from) {
-    ClothModel m = hangingGridCloth(n, 0.0, 3);
+    drape::model::ClothModel m = hangingGridCloth(n, 0.0, 3);
     for (auto& f : m.fabrics) f.stretchWarp = f.stretchWeft = f.shear = stiffness;
     NewtonSettings s;
     s.relaxation = false;

@@ -228,10 +228,10 @@ TEST(CoupledGroups, PcgWithThemMeetsTheToleranceInFewerIterations) {
 // to tau_n); by default they engage on solves that need many iterations.
 TEST(CoupledGroups, EngageInTheNewtonSolverAndKeepItsResult) {
   const int n = 14;
-  ClothModel m;
+  drape::model::ClothModel m;
   appendGridPanel(m, n, n, 0.3, 0.3, Eigen::Vector3d(0, 0, 0));
   appendGridPanel(m, n, n, 0.3, 0.3, Eigen::Vector3d(0.32, 0, 0));  // 2 cm gap, closed in the first steps
-  TriangleFabric f;
+  drape::model::TriangleFabric f;
   f.stretchWarp = f.stretchWeft = 300.0;
   f.shear = 30.0;
   f.bendWarp = f.bendWeft = 1e-6;

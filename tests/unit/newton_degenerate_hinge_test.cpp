@@ -22,8 +22,8 @@ struct Wing {
 
 // Two triangles sharing one hinge, wing B folded by `fold` radians out of the flat state with its vertex x3 at
 // signed distance `height` (metres) from the edge line; hinge receives the model's only hinge.
-ClothModel foldedHinge(double height, double fold, Hinge& hinge, Wing& wing) {
-  ClothModel m = gridCloth(2, 0.02, 0.0, 1);
+drape::model::ClothModel foldedHinge(double height, double fold, Hinge& hinge, Wing& wing) {
+  drape::model::ClothModel m = gridCloth(2, 0.02, 0.0, 1);
   hinge = buildHinges(m).at(0);
   Eigen::VectorXd& x = m.positions;
   const Eigen::Vector3d x0 = x.segment<3>(3 * hinge.v[0]), x1 = x.segment<3>(3 * hinge.v[1]);
@@ -41,7 +41,7 @@ ClothModel foldedHinge(double height, double fold, Hinge& hinge, Wing& wing) {
 TEST(NewtonDegenerateHinge, BendingStaysFiniteOnACollapsedWing) {
   Hinge hinge;
   Wing wing;
-  ClothModel m = foldedHinge(1e-9, 2.4, hinge, wing);
+  drape::model::ClothModel m = foldedHinge(1e-9, 2.4, hinge, wing);
   HingeBending bending(m);
   bending.beginStep(StepContext{});
   Eigen::VectorXd g = Eigen::VectorXd::Zero(m.positions.size());
@@ -58,7 +58,7 @@ TEST(NewtonDegenerateHinge, FadedBendingMatchesFiniteDifferences) {
   Hinge hinge;
   Wing wing;
   const double restHeight = 0.02 / std::sqrt(2.0);  // of the wing triangles across the grid square's diagonal
-  ClothModel m = foldedHinge(0.1 * 1.05 * restHeight, 2.4, hinge, wing);
+  drape::model::ClothModel m = foldedHinge(0.1 * 1.05 * restHeight, 2.4, hinge, wing);
   HingeBending e(m);
   e.setExactHessian(true);
   e.beginStep(StepContext{});

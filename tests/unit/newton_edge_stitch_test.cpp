@@ -56,7 +56,7 @@ TEST(NewtonEdgeStitch, ValueMatchesHandComputation) {
   // v = (0, 0, 1), edge (0, 0, 0) -> (1, 0, 0), t = 0.25: edge point (0.25, 0, 0), c = (-0.25, 0, 1).
   Eigen::VectorXd x(9);
   x << 0, 0, 1, 0, 0, 0, 1, 0, 0;
-  StitchSprings e({}, 200.0, {EdgeStitch{0, 1, 2, 0.25}});
+  StitchSprings e({}, 200.0, {drape::model::EdgeStitch{0, 1, 2, 0.25}});
   EXPECT_NEAR(e.value(x), 0.5 * 200.0 * (0.0625 + 1.0), 1e-12);
   EXPECT_NEAR(e.maxGap(x), std::sqrt(1.0625), 1e-12);
   // Gradient: k w_i c with w = (1, -0.75, -0.25).
@@ -69,8 +69,8 @@ TEST(NewtonEdgeStitch, ValueMatchesHandComputation) {
   EXPECT_LT((g.segment<3>(0) + g.segment<3>(3) + g.segment<3>(6)).norm(), 1e-12);
   // t = 0 is the vertex stitch (v, a); t = 1 the vertex stitch (v, b).
   const Eigen::VectorXd y = randomPositions(3, 5);
-  StitchSprings atA({}, 200.0, {EdgeStitch{0, 1, 2, 0.0}}), pairA({{0, 1}}, 200.0);
-  StitchSprings atB({}, 200.0, {EdgeStitch{0, 1, 2, 1.0}}), pairB({{2, 0}}, 200.0);
+  StitchSprings atA({}, 200.0, {drape::model::EdgeStitch{0, 1, 2, 0.0}}), pairA({{0, 1}}, 200.0);
+  StitchSprings atB({}, 200.0, {drape::model::EdgeStitch{0, 1, 2, 1.0}}), pairB({{2, 0}}, 200.0);
   EXPECT_NEAR(atA.value(y), pairA.value(y), 1e-14);
   EXPECT_NEAR(atB.value(y), pairB.value(y), 1e-14);
   EXPECT_LT((gradientOf(atA, y) - gradientOf(pairA, y)).norm(), 1e-12);
@@ -83,12 +83,12 @@ TEST(NewtonEdgeStitch, ValueMatchesHandComputation) {
   // A vertex on its edge point has zero energy.
   Eigen::VectorXd on = y;
   on.segment<3>(0) = 0.6 * y.segment<3>(3) + 0.4 * y.segment<3>(6);
-  EXPECT_NEAR(StitchSprings({}, 200.0, {EdgeStitch{0, 1, 2, 0.4}}).value(on), 0.0, 1e-15);
+  EXPECT_NEAR(StitchSprings({}, 200.0, {drape::model::EdgeStitch{0, 1, 2, 0.4}}).value(on), 0.0, 1e-15);
 }
 
 TEST(NewtonEdgeStitch, GradientAndHessianMatchFiniteDifferences) {
   const int n = 7;
-  const std::vector<EdgeStitch> edges = {{0, 1, 2, 0.3}, {3, 2, 4, 0.75}, {5, 6, 1, 0.0}, {6, 3, 5, 1.0}};
+  const std::vector<drape::model::EdgeStitch> edges = {{0, 1, 2, 0.3}, {3, 2, 4, 0.75}, {5, 6, 1, 0.0}, {6, 3, 5, 1.0}};
   StitchSprings e({{0, 4}, {5, 2}}, 1.7e3, edges);  // vertex and edge stitches mixed, sharing vertices
   for (unsigned seed : {1u, 2u, 3u}) {
     const Eigen::VectorXd x = randomPositions(n, seed);
@@ -117,21 +117,21 @@ TEST(NewtonEdgeStitch, GradientAndHessianMatchFiniteDifferences) {
   }
   // Couplings: every pair of a stencil (v, a), (v, b), (a, b), so the static pattern holds all blocks.
   std::vector<std::pair<int, int>> pairs;
-  StitchSprings({}, 1.0, {EdgeStitch{0, 1, 2, 0.5}}).addCouplings(pairs);
+  StitchSprings({}, 1.0, {drape::model::EdgeStitch{0, 1, 2, 0.5}}).addCouplings(pairs);
   ASSERT_EQ(pairs.size(), 3u);
   BlockMatrix pattern(3, pairs);
   EXPECT_EQ(pattern.staticBlockCount(), 9);
 }
 
 TEST(NewtonEdgeStitch, ValidationNamesTheBadStitch) {
-  ClothModel m;
-  m.fabrics = {TriangleFabric{}};
+  drape::model::ClothModel m;
+  m.fabrics = {drape::model::TriangleFabric{}};
   appendGridPanel(m, 3, 3, 0.1, 0.1, Eigen::Vector3d::Zero());  // 9 vertices
-  auto message = [&](EdgeStitch e) -> std::string {
-    ClothModel bad = m;
-    bad.edgeStitches = {EdgeStitch{0, 4, 5, 0.5}, e};
+  auto message = [&](drape::model::EdgeStitch e) -> std::string {
+    drape::model::ClothModel bad = m;
+    bad.edgeStitches = {drape::model::EdgeStitch{0, 4, 5, 0.5}, e};
     try {
-      validateStitches(bad);
+      drape::model::validateStitches(bad);
     } catch (const drape::InputError& err) {
       return err.what();
     }
@@ -145,8 +145,8 @@ TEST(NewtonEdgeStitch, ValidationNamesTheBadStitch) {
   EXPECT_EQ(message({0, 4, 4, 0.5}), "cloth model: edge stitch 1: edge (4, 4) is degenerate");
   EXPECT_EQ(message({0, 4, 5, 1.0}), "no error");
   // The Newton solver refuses such a model with the same message.
-  ClothModel bad = m;
-  bad.edgeStitches = {EdgeStitch{2, 2, 5, 0.5}};
+  drape::model::ClothModel bad = m;
+  bad.edgeStitches = {drape::model::EdgeStitch{2, 2, 5, 0.5}};
   EXPECT_THROW(NewtonSolver(bad, NewtonSettings{}), drape::InputError);
 }
 
@@ -155,8 +155,8 @@ TEST(NewtonEdgeStitch, DrapeClosesANonConformingSeam) {
   // fine panel's left column is stitched to the point at its height on the coarse panel's right column.
   const int n1 = 6, nx2 = 9, ny2 = 11;
   const double size = 0.2, gap = 0.05;
-  ClothModel m;
-  TriangleFabric cotton;
+  drape::model::ClothModel m;
+  drape::model::TriangleFabric cotton;
   cotton.stretchWarp = cotton.stretchWeft = 5000.0;
   cotton.shear = 250.0;
   m.fabrics = {cotton};
@@ -183,7 +183,7 @@ TEST(NewtonEdgeStitch, DrapeClosesANonConformingSeam) {
   ASSERT_TRUE(x.allFinite());
   // Independent gap measurement from the positions.
   double worst = 0.0;
-  for (const EdgeStitch& e : m.edgeStitches)
+  for (const drape::model::EdgeStitch& e : m.edgeStitches)
     worst = std::max(
         worst, (x.segment<3>(3 * e.vertex) - (1 - e.t) * x.segment<3>(3 * e.a) - e.t * x.segment<3>(3 * e.b)).norm());
   std::printf("non-conforming seam gap after 0.5 s: %.3e m\n", worst);
@@ -246,10 +246,10 @@ TEST(NewtonEdgeStitch, TshirtNonConformingSeamsCloseInADrape) {
       nonConforming, g.stitches.size(), g.edgeStitches.size(), g.stitchPairs.size(), conforming.stitchPairs.size());
   EXPECT_GT(nonConforming, 0);
 
-  ClothModel m;
+  drape::model::ClothModel m;
   m.restCoords = g.rest;
   m.triangles = g.triangles;
-  m.fabrics = {TriangleFabric{}};
+  m.fabrics = {drape::model::TriangleFabric{}};
   m.positions.resize(3 * g.vertexCount());
   for (int v = 0; v < g.vertexCount(); ++v) m.positions.segment<3>(3 * v) = g.positions.row(v).transpose();
   m.stitches = g.stitchPairs;
@@ -263,7 +263,7 @@ TEST(NewtonEdgeStitch, TshirtNonConformingSeamsCloseInADrape) {
   ASSERT_TRUE(x.allFinite());
   double pairGap = 0.0, edgeGap = 0.0;
   for (auto [i, j] : m.stitches) pairGap = std::max(pairGap, (x.segment<3>(3 * i) - x.segment<3>(3 * j)).norm());
-  for (const EdgeStitch& e : m.edgeStitches)
+  for (const drape::model::EdgeStitch& e : m.edgeStitches)
     edgeGap = std::max(
         edgeGap, (x.segment<3>(3 * e.vertex) - (1 - e.t) * x.segment<3>(3 * e.a) - e.t * x.segment<3>(3 * e.b)).norm());
   std::printf("t-shirt seams: largest gap %.3f m placed, after 0.3 s: pairs %.2e m, edge stitches %.2e m\n", before,

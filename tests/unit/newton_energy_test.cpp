@@ -17,7 +17,7 @@ using namespace drape::newton;
 
 TEST(NewtonEnergy, MembraneGradientAndExactHessian) {
   for (unsigned seed : {1u, 2u, 3u}) {
-    ClothModel m = gridCloth(4, 0.05, 0.3, seed);
+    drape::model::ClothModel m = gridCloth(4, 0.05, 0.3, seed);
     StvkMembrane e(m);
     e.setExactHessian(true);
     checkEnergy(e, m.positions, true);
@@ -28,7 +28,7 @@ TEST(NewtonEnergy, MembraneGradientAndExactHessian) {
 
 TEST(NewtonEnergy, MembraneStrainMatchesStretch) {
   // Uniform 10% warp stretch: E00 = (1.1^2 - 1) / 2, energy = area * 0.5 * kWarp * E00^2.
-  ClothModel m = gridCloth(3, 0.1, 0.3, 1);
+  drape::model::ClothModel m = gridCloth(3, 0.1, 0.3, 1);
   for (int v = 0; v < 9; ++v) m.positions.segment<3>(3 * v) << 1.1 * m.restCoords(v, 0), m.restCoords(v, 1), 0.0;
   StvkMembrane e(m);
   double e00 = 0.5 * (1.21 - 1.0);
@@ -37,7 +37,7 @@ TEST(NewtonEnergy, MembraneStrainMatchesStretch) {
 
 TEST(NewtonEnergy, BendingGradientAndExactHessian) {
   for (unsigned seed : {4u, 5u, 6u}) {
-    ClothModel m = gridCloth(4, 0.05, 0.3, seed);
+    drape::model::ClothModel m = gridCloth(4, 0.05, 0.3, seed);
     HingeBending e(m);
     ASSERT_EQ(e.hinges().size(), 21u);  // 33 edges of a 4x4 grid minus 12 on the boundary
     e.setExactHessian(true);
@@ -52,7 +52,7 @@ TEST(NewtonEnergy, BendingGradientAndExactHessian) {
 // formed whole and summed (elementHessian, clamped by Eigen's eigen solver; k_e grad(phi) grad(phi)^T), exact and
 // projected, on a cloth compressed along the warp so that the clamp cuts.
 TEST(NewtonEnergy, AssembledHessiansEqualTheElementHessiansSummed) {
-  ClothModel m = gridCloth(6, 0.05, 0.3, 11);
+  drape::model::ClothModel m = gridCloth(6, 0.05, 0.3, 11);
   for (int v = 0; v < m.numVertices(); ++v) m.positions(3 * v) *= 0.8;
   const Eigen::VectorXd& x = m.positions;
   const int n = static_cast<int>(x.size());
@@ -93,7 +93,7 @@ TEST(NewtonEnergy, AssembledHessiansEqualTheElementHessiansSummed) {
 
 TEST(NewtonEnergy, HingeAngleOfAKnownFold) {
   // Edge along x, wing 2 rotated by 90 degrees about it: |theta| = pi / 2; flat: 0.
-  ClothModel m = gridCloth(2, 1.0, 0.3, 1);
+  drape::model::ClothModel m = gridCloth(2, 1.0, 0.3, 1);
   HingeBending e(m);
   ASSERT_EQ(e.hinges().size(), 1u);
   Hinge h = e.hinges()[0];
@@ -108,7 +108,7 @@ TEST(NewtonEnergy, HingeAngleOfAKnownFold) {
 }
 
 TEST(NewtonEnergy, SpringsGravityDrag) {
-  ClothModel m = gridCloth(3, 0.1, 0.3, 7);
+  drape::model::ClothModel m = gridCloth(3, 0.1, 0.3, 7);
   StitchSprings stitches({{0, 8}, {2, 6}}, 1e3);
   checkEnergy(stitches, m.positions, true);
   PinSprings pins({1, 4}, {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 3)}, 1e3);
@@ -128,7 +128,7 @@ TEST(NewtonEnergy, SpringsGravityDrag) {
 }
 
 TEST(NewtonEnergy, DissipationPotentials) {
-  ClothModel m = gridCloth(4, 0.05, 0.3, 8);
+  drape::model::ClothModel m = gridCloth(4, 0.05, 0.3, 8);
   Eigen::VectorXd previous = gridCloth(4, 0.05, 0.3, 9).positions, vel = Eigen::VectorXd::Zero(previous.size());
   StepContext ctx{&previous, &vel, 1e-3, 0.0, 1.0, {}};
   StvkMembrane membrane(m);

@@ -32,12 +32,12 @@ struct SlideResult {
 // corners and swings under gravity for the whole run.
 SlideResult slide(bool majorizer, int steps) {
   const int n = 3;
-  ClothModel m;
+  drape::model::ClothModel m;
   m.restCoords.resize(n, 2);
   m.restCoords << 0.0, 0.0, 0.02, 0.0, 0.0, 0.02;
   m.triangles.resize(1, 3);
   m.triangles << 0, 1, 2;
-  m.fabrics = {TriangleFabric{5000.0, 3000.0, 200.0, 5e-6, 2e-6}};  // gridCloth's fabric (the panel's too)
+  m.fabrics = {drape::model::TriangleFabric{5000.0, 3000.0, 200.0, 5e-6, 2e-6}};  // gridCloth's fabric (the panel's too)
   const double thickness = 2e-3, stiffness = 100.0;
   const double vertexMass = m.fabrics[0].density * 0.5 * 0.02 * 0.02 / 3.0;
   m.positions.resize(3 * n);

@@ -19,9 +19,9 @@ namespace {
 
 // 20 x 20 cloth of 0.5 m hanging from its two top corners: a short relaxation at h_max / 16, then h grows back to
 // h_max by time splitting's growth rule, then steps at h_max.
-ClothModel hangingGrid() {
+drape::model::ClothModel hangingGrid() {
   const int n = 20;
-  ClothModel m = gridCloth(n, 0.5 / (n - 1), 0.0, 5);
+  drape::model::ClothModel m = gridCloth(n, 0.5 / (n - 1), 0.0, 5);
   m.pinned = {n * (n - 1), n * n - 1};
   return m;
 }
@@ -40,7 +40,7 @@ struct RunResult {
   std::vector<NewtonStepReport> reports;
 };
 
-RunResult simulate(const ClothModel& m, const NewtonSettings& s, int steps) {
+RunResult simulate(const drape::model::ClothModel& m, const NewtonSettings& s, int steps) {
   NewtonSolver solver(m, s);
   RunResult r;
   for (int k = 0; k < steps; ++k) r.reports.push_back(solver.step());
@@ -51,7 +51,7 @@ RunResult simulate(const ClothModel& m, const NewtonSettings& s, int steps) {
 }  // namespace
 
 TEST(NewtonInexact, StepsConvergeAndStayAsCloseToTheReferenceAsTheDefault) {
-  const ClothModel m = hangingGrid();
+  const drape::model::ClothModel m = hangingGrid();
   const int steps = 200;
   // The switches measured against each other alone: the rest-aware test (on by default) makes the steps near rest
   // iterate until their residual is far below tau_n, which is the accuracy the forcing trades; the relaxation's
@@ -115,7 +115,7 @@ TEST(NewtonInexact, StepsConvergeAndStayAsCloseToTheReferenceAsTheDefault) {
 }
 
 TEST(NewtonInexact, HessianReuseFollowsItsRules) {
-  const ClothModel m = hangingGrid();
+  const drape::model::ClothModel m = hangingGrid();
   NewtonSettings s = shortRelaxation();
   s.hessianReuseSteps = 3;
   const RunResult r = simulate(m, s, 150);
@@ -143,7 +143,7 @@ TEST(NewtonInexact, HessianReuseFollowsItsRules) {
 // nothing) restores a saved copy instead. Both are the same matrix, so both runs must be the same bit for bit,
 // while reusing the Hessian in most steps.
 TEST(NewtonInexact, HessianReusedInPlaceEqualsTheSavedCopy) {
-  const ClothModel m = hangingGrid();
+  const drape::model::ClothModel m = hangingGrid();
   // In place, the PCG also keeps its preparation of the matrix (PcgCache: inverse blocks, the float copy).
   for (bool mixed : {false, true}) {
     NewtonSettings s = shortRelaxation();

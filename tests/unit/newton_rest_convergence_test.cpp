@@ -22,7 +22,7 @@ namespace {
 // The rule itself on a hanging cloth (no contact): near rest a step below tau_n iterates on while its residual's
 // velocity error is above the rest speed, and one that cannot get there is accepted at I_n, never split.
 TEST(NewtonRestConvergence, NearRestStepsIterateOnButAreNeverSplit) {
-  newton::ClothModel m = newton::gridCloth(12, 0.5 / 11, 0.0, 3);
+  drape::model::ClothModel m = newton::gridCloth(12, 0.5 / 11, 0.0, 3);
   m.pinned = {12 * 11, 12 * 12 - 1};
   auto run = [&](bool restAware, double restSpeed) {
     newton::NewtonSettings s;

@@ -14,8 +14,8 @@ using namespace drape::newton;
 namespace {
 
 // Cotton-like fabric of the brief.
-TriangleFabric cotton() {
-  TriangleFabric f;
+drape::model::TriangleFabric cotton() {
+  drape::model::TriangleFabric f;
   f.stretchWarp = f.stretchWeft = 5000.0;
   f.shear = 5000.0 / 20.0;
   f.bendWarp = f.bendWeft = 5e-6;
@@ -25,7 +25,7 @@ TriangleFabric cotton() {
 
 // Vertical panel of n x n vertices, side length `size`, in the x-y plane with its bottom-left corner at
 // `origin`. Quad diagonals mirror about the middle column so the mesh is left-right symmetric.
-void appendPanel(ClothModel& m, int n, double size, const Eigen::Vector3d& origin) {
+void appendPanel(drape::model::ClothModel& m, int n, double size, const Eigen::Vector3d& origin) {
   const int base = m.numVertices();
   const double d = size / (n - 1);
   m.restCoords.conservativeResize(base + n * n, 2);
@@ -50,15 +50,15 @@ void appendPanel(ClothModel& m, int n, double size, const Eigen::Vector3d& origi
     }
 }
 
-ClothModel hangingCloth(int n, double size) {
-  ClothModel m;
+drape::model::ClothModel hangingCloth(int n, double size) {
+  drape::model::ClothModel m;
   m.fabrics = {cotton()};
   appendPanel(m, n, size, Eigen::Vector3d(0, 0, 0));
   m.pinned = {n * (n - 1), n * n - 1};  // top corners
   return m;
 }
 
-double maxEdgeStretch(const ClothModel& m, const Eigen::VectorXd& x) {
+double maxEdgeStretch(const drape::model::ClothModel& m, const Eigen::VectorXd& x) {
   double worst = 0.0;
   for (int t = 0; t < m.triangles.rows(); ++t)
     for (int k = 0; k < 3; ++k) {
@@ -84,7 +84,7 @@ class PoisonEnergy : public Energy {
 }  // namespace
 
 TEST(NewtonSolver, QuadraticConvergenceOnSmoothProblem) {
-  ClothModel m = hangingCloth(6, 0.2);
+  drape::model::ClothModel m = hangingCloth(6, 0.2);
   for (int v = 0; v < m.numVertices(); ++v) m.positions(3 * v + 2) = 0.01 * std::sin(7.0 * v);  // out of plane
   NewtonSettings s;
   s.relaxation = false;
@@ -119,7 +119,7 @@ TEST(NewtonSolver, QuadraticConvergenceOnSmoothProblem) {
 
 TEST(NewtonSolver, HangingClothReachesSymmetricEquilibrium) {
   const int n = 21;
-  ClothModel m = hangingCloth(n, 1.0);
+  drape::model::ClothModel m = hangingCloth(n, 1.0);
   NewtonSolver solver(m, NewtonSettings{});
   EXPECT_EQ(solver.energyNames(), (std::vector<std::string>{"membrane", "bending", "pins", "gravity", "air_drag",
                                                             "stretch_damping", "bending_damping"}));
@@ -150,7 +150,7 @@ TEST(NewtonSolver, HangingClothReachesSymmetricEquilibrium) {
 
 TEST(NewtonSolver, StitchedPanelsCloseTheSeam) {
   const int n = 6;
-  ClothModel m;
+  drape::model::ClothModel m;
   m.fabrics = {cotton()};
   appendPanel(m, n, 0.2, Eigen::Vector3d(0, 0, 0));
   appendPanel(m, n, 0.2, Eigen::Vector3d(0.25, 0, 0));  // 5 cm gap
@@ -168,7 +168,7 @@ TEST(NewtonSolver, StitchedPanelsCloseTheSeam) {
 }
 
 TEST(NewtonSolver, TimeSplittingRecoversFromForcedFailure) {
-  ClothModel m = hangingCloth(8, 0.3);
+  drape::model::ClothModel m = hangingCloth(8, 0.3);
   for (int v = 0; v < m.numVertices(); ++v) m.positions(3 * v) *= 1.3;  // stretched start
   NewtonSettings s;
   s.relaxation = false;
@@ -226,7 +226,7 @@ TEST(NewtonSolver, StartStepGrowsToHMaxByTheSplittingRule) {
 TEST(NewtonSolver, RelaxationSettlesPreStretchedCloth) {
   for (bool hold : {true, false}) {
     SCOPED_TRACE(hold ? "hold" : "grow");
-    ClothModel m = hangingCloth(9, 0.3);
+    drape::model::ClothModel m = hangingCloth(9, 0.3);
     m.pinned.clear();
     m.gravity.setZero();
     m.positions *= 2.0;  // 2x pre-stretch in both directions
@@ -269,7 +269,7 @@ TEST(NewtonSolver, RelaxationSettlesPreStretchedCloth) {
 // stitches close during the 0.1 s window, as a garment's seams close in its relaxation.
 TEST(NewtonSolver, RelaxationGuessNeedsFewerIterationsForTheSameSettling) {
   const int n = 8;
-  ClothModel m;
+  drape::model::ClothModel m;
   m.fabrics = {cotton()};
   appendPanel(m, n, 0.2, Eigen::Vector3d(0, 0, 0));
   appendPanel(m, n, 0.2, Eigen::Vector3d(0.3, 0, 0));
@@ -309,7 +309,7 @@ TEST(NewtonSolver, RelaxationGuessNeedsFewerIterationsForTheSameSettling) {
 }
 
 TEST(NewtonSolver, DivergenceKeepsLastGoodStateAndCancelStops) {
-  ClothModel m = hangingCloth(5, 0.2);
+  drape::model::ClothModel m = hangingCloth(5, 0.2);
   std::vector<std::unique_ptr<Energy>> extra;
   auto poison = std::make_unique<PoisonEnergy>();
   PoisonEnergy* p = poison.get();
@@ -339,7 +339,7 @@ TEST(NewtonSolver, DivergenceKeepsLastGoodStateAndCancelStops) {
 // A step whose residual never gets below tau_n (here an unreachable 1e-30 with one Newton iteration) splits down
 // to h_min and ends Diverged with the last good state kept, so that a caller stops instead of retrying it forever.
 TEST(NewtonSolver, StepThatNeverConvergesEndsDivergedAtMinimumStep) {
-  ClothModel m = hangingCloth(5, 0.2);
+  drape::model::ClothModel m = hangingCloth(5, 0.2);
   NewtonSettings s;
   s.relaxation = false;
   s.hMin = 1e-5;
@@ -356,7 +356,7 @@ TEST(NewtonSolver, StepThatNeverConvergesEndsDivergedAtMinimumStep) {
 }
 
 TEST(NewtonSolver, PreconditionersAndDirectSolveAgree) {
-  ClothModel m = hangingCloth(8, 0.3);
+  drape::model::ClothModel m = hangingCloth(8, 0.3);
   Eigen::VectorXd reference;
   for (auto [kind, pre, mixed] :
        std::vector<std::tuple<LinearSolverKind, Preconditioner, bool>>{

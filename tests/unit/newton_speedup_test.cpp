@@ -65,7 +65,7 @@ void expectSameAssembly(Energy& e, const Eigen::VectorXd& x, const Eigen::Vector
 TEST(NewtonSpeedup, ClosedFormHingeGradientMatchesAutodiff) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  ClothModel m = gridCloth(2, 1.0, 0.0, 1);
+  drape::model::ClothModel m = gridCloth(2, 1.0, 0.0, 1);
   HingeBending bending(m);
   ASSERT_EQ(bending.hinges().size(), 1u);
   const Hinge h = bending.hinges()[0];
@@ -83,7 +83,7 @@ TEST(NewtonSpeedup, ClosedFormHingeGradientMatchesAutodiff) {
 }
 
 TEST(NewtonSpeedup, ColouringSeparatesStencilsSharingAVertex) {
-  ClothModel m = gridCloth(15, 0.01, 0.1, 2);
+  drape::model::ClothModel m = gridCloth(15, 0.01, 0.1, 2);
   HingeBending bending(m);
   std::vector<std::array<int, 4>> hinges;
   for (const auto& h : bending.hinges()) hinges.push_back(h.v);
@@ -107,7 +107,7 @@ TEST(NewtonSpeedup, ColouringSeparatesStencilsSharingAVertex) {
 TEST(NewtonSpeedup, ChunkScheduleSeparatesChunksSharingAVertex) {
   tbb::task_arena arena(4);
   arena.execute([] {
-    ClothModel m = gridCloth(60, 0.01, 0.1, 2);
+    drape::model::ClothModel m = gridCloth(60, 0.01, 0.1, 2);
     HingeBending bending(m);
     std::vector<std::array<int, 4>> hinges;
     for (const auto& h : bending.hinges()) hinges.push_back(h.v);
@@ -145,7 +145,7 @@ TEST(NewtonSpeedup, ChunkScheduleSeparatesChunksSharingAVertex) {
 TEST(NewtonSpeedup, ChunkScheduleFallsBackWithoutLocality) {
   tbb::task_arena arena(4);
   arena.execute([] {
-    ClothModel m = gridCloth(60, 0.01, 0.1, 2);
+    drape::model::ClothModel m = gridCloth(60, 0.01, 0.1, 2);
     std::vector<int> relabel(m.numVertices());
     std::iota(relabel.begin(), relabel.end(), 0);
     std::shuffle(relabel.begin(), relabel.end(), std::mt19937(7));
@@ -161,7 +161,7 @@ TEST(NewtonSpeedup, ChunkScheduleFallsBackWithoutLocality) {
 // The one-pass gradient + Hessian of the first Newton iteration equals the separate passes, with the speed-ups
 // off and on.
 TEST(NewtonSpeedup, FusedGradientAndHessianEqualSeparatePasses) {
-  ClothModel m = gridCloth(30, 0.01, 0.3, 3);
+  drape::model::ClothModel m = gridCloth(30, 0.01, 0.3, 3);
   Eigen::VectorXd x0 = gridCloth(30, 0.01, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(x0.size());
   StvkMembrane membrane(m);
   HingeBending bending(m);
@@ -186,7 +186,7 @@ TEST(NewtonSpeedup, FusedGradientAndHessianEqualSeparatePasses) {
 // as the four energies on their own, in the one-pass first iteration and in the separate gradient and Hessian
 // passes.
 TEST(NewtonSpeedup, FoldedDissipationsAssembleTheSameSum) {
-  ClothModel m = gridCloth(30, 0.01, 0.3, 3);
+  drape::model::ClothModel m = gridCloth(30, 0.01, 0.3, 3);
   Eigen::VectorXd x0 = gridCloth(30, 0.01, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(x0.size());
   StvkMembrane membrane(m);
   HingeBending bending(m);
@@ -238,7 +238,7 @@ TEST(NewtonSpeedup, FoldedDissipationsAssembleTheSameSum) {
 // the bending's recorded gradient pass when that was at x_n): their values and gradients against the definition
 // E = 0.5 (J d)^T W (J d), J formed at x_n from scratch, and the same dissipation with and without the recording.
 TEST(NewtonSpeedup, CompactLaggedDissipationsMatchTheirDefinition) {
-  ClothModel m = gridCloth(12, 0.02, 0.3, 3);
+  drape::model::ClothModel m = gridCloth(12, 0.02, 0.3, 3);
   const Eigen::VectorXd xn = gridCloth(12, 0.02, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(xn.size());
   const Eigen::VectorXd& x = m.positions;
   const double h = 1e-3, scale = 0.7, betaS = 1e-2, betaB = 1e-1;
@@ -324,7 +324,7 @@ TEST(NewtonSpeedup, CompactLaggedDissipationsMatchTheirDefinition) {
 // is the full gradient, dissipations included, but leaves the records of the last pass for the next step's x_n: the
 // deformation gradients, the angle gradients and the step-start gradient.
 TEST(NewtonSpeedup, GuessGradientKeepsTheLastPassRecords) {
-  ClothModel m = gridCloth(12, 0.02, 0.3, 3);
+  drape::model::ClothModel m = gridCloth(12, 0.02, 0.3, 3);
   const Eigen::VectorXd xn = gridCloth(12, 0.02, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(xn.size());
   const Eigen::VectorXd& guess = m.positions;
   const StepContext ctx = context(xn, v0, true);
@@ -362,7 +362,7 @@ TEST(NewtonSpeedup, GuessGradientKeepsTheLastPassRecords) {
 }
 
 TEST(NewtonSpeedup, FastAssemblyEqualsSerialSearchAssembly) {
-  ClothModel m = gridCloth(30, 0.01, 0.3, 3);  // 841 vertices: colours large enough to run in parallel chunks
+  drape::model::ClothModel m = gridCloth(30, 0.01, 0.3, 3);  // 841 vertices: colours large enough to run in parallel chunks
   Eigen::VectorXd x0 = gridCloth(30, 0.01, 0.3, 4).positions, v0 = Eigen::VectorXd::Zero(x0.size());
   StvkMembrane membrane(m);
   expectSameAssembly(membrane, m.positions, x0, v0);
@@ -376,7 +376,7 @@ TEST(NewtonSpeedup, FastAssemblyEqualsSerialSearchAssembly) {
 
 TEST(NewtonSpeedup, SolverResultsIndependentOfSwitches) {
   const int n = 12;
-  ClothModel m = hangingGridCloth(n, 0.0, 5);
+  drape::model::ClothModel m = hangingGridCloth(n, 0.0, 5);
   Eigen::VectorXd reference;
   for (int config = 0; config < 2; ++config) {
     NewtonSettings s;
@@ -397,7 +397,7 @@ TEST(NewtonSpeedup, SolverResultsIndependentOfSwitches) {
 // fresh and reused Hessians; and the record is really used (the first passes it saves are not run).
 TEST(NewtonSpeedup, RecordedStepStartGradientsGiveTheSameRelaxation) {
   const int n = 15;
-  ClothModel m = hangingGridCloth(n, 0.05, 5);
+  drape::model::ClothModel m = hangingGridCloth(n, 0.05, 5);
   Eigen::VectorXd reference;
   for (int config = 0; config < 2; ++config) {
     NewtonSettings s;
@@ -588,7 +588,7 @@ TEST(NewtonSpeedup, WarmStartNeedsFewerIterations) {
 
 TEST(NewtonSpeedup, SolverSwitchesReachTheSameState) {
   const int n = 25;  // 625 vertices: the fused kernels run in two parallel chunks
-  ClothModel m = hangingGridCloth(n, 0.0, 14);
+  drape::model::ClothModel m = hangingGridCloth(n, 0.0, 14);
   auto run = [&m](const std::function<void(NewtonSettings&)>& configure) {
     NewtonSettings s;
     s.relaxation = false;

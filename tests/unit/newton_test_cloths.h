@@ -3,13 +3,13 @@
 
 #include <random>
 
-#include "drape/newton/cloth_model.h"
+#include "drape/model/cloth_model.h"
 
 namespace drape::newton {
 
 // n x n grid of spacing d, anisotropic fabric, random 3D perturbation of amplitude `noise` * d.
-inline ClothModel gridCloth(int n, double d, double noise, unsigned seed) {
-  ClothModel m;
+inline drape::model::ClothModel gridCloth(int n, double d, double noise, unsigned seed) {
+  drape::model::ClothModel m;
   m.restCoords.resize(n * n, 2);
   m.positions.resize(3 * n * n);
   std::mt19937 rng(seed);
@@ -27,7 +27,7 @@ inline ClothModel gridCloth(int n, double d, double noise, unsigned seed) {
       m.triangles.row(t++) << a, b, e;
       m.triangles.row(t++) << a, e, c;
     }
-  TriangleFabric f;
+  drape::model::TriangleFabric f;
   f.stretchWarp = 5000.0;
   f.stretchWeft = 3000.0;
   f.shear = 200.0;
@@ -38,15 +38,15 @@ inline ClothModel gridCloth(int n, double d, double noise, unsigned seed) {
 }
 
 // 1 m x 1 m gridCloth of n x n vertices hanging from its two top corners.
-inline ClothModel hangingGridCloth(int n, double noise, unsigned seed) {
-  ClothModel m = gridCloth(n, 1.0 / (n - 1), noise, seed);
+inline drape::model::ClothModel hangingGridCloth(int n, double noise, unsigned seed) {
+  drape::model::ClothModel m = gridCloth(n, 1.0 / (n - 1), noise, seed);
   m.pinned = {n * (n - 1), n * n - 1};
   return m;
 }
 
 // Vertical panel of nx x ny vertices, width x height metres, bottom-left corner at `origin`, appended to m; rest
 // coords from 0.
-inline void appendGridPanel(ClothModel& m, int nx, int ny, double width, double height, const Eigen::Vector3d& origin) {
+inline void appendGridPanel(drape::model::ClothModel& m, int nx, int ny, double width, double height, const Eigen::Vector3d& origin) {
   const int base = m.numVertices();
   m.restCoords.conservativeResize(base + nx * ny, 2);
   m.positions.conservativeResize(3 * (base + nx * ny));

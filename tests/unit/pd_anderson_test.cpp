@@ -86,7 +86,7 @@ TEST(AndersonMixer, ARestartForgetsTheWholeHistory) {
 TEST(PdPreviewAnderson, HangingClothReachesThePlainLoopsStatesInFewerIterations) {
   GridClothOptions o;
   o.nx = o.ny = 30;
-  const newton::ClothModel model = makeGridCloth(o);
+  const drape::model::ClothModel model = makeGridCloth(o);
   for (ShearModelKind shear : {ShearModelKind::Stretch, ShearModelKind::Fabric})
     for (LocalStepKind local : {LocalStepKind::GaussSeidel, LocalStepKind::Jacobi}) {
       PreviewSettings s;

@@ -130,7 +130,7 @@ DropResult fastDrop(bool ccd, int steps) {
   o.horizontal = true;
   o.elevation = radius + 0.03;
   o.pinTopCorners = false;
-  newton::ClothModel model = makeGridCloth(o);
+  drape::model::ClothModel model = makeGridCloth(o);
   model.velocities = Eigen::VectorXd::Zero(model.positions.size());
   for (int v = 0; v < model.numVertices(); ++v) model.velocities[3 * v + 1] = -15.0;
   auto collider = std::make_shared<const collision::AvatarCollider>(makeIcosphere(Eigen::Vector3d::Zero(), radius, 4));
@@ -188,7 +188,7 @@ double slide(double mu, int steps, double angle, double h) {
   o.horizontal = true;
   o.elevation = s.contactThickness;
   o.pinTopCorners = false;
-  newton::ClothModel model = makeGridCloth(o);
+  drape::model::ClothModel model = makeGridCloth(o);
   for (int v = 0; v < model.numVertices(); ++v)
     model.positions.segment<3>(3 * v) = rotation * model.positions.segment<3>(3 * v);
   auto collider = std::make_shared<const collision::AvatarCollider>(boxMesh(0.6, 0.1, 0.6, rotation));
@@ -222,7 +222,7 @@ TEST(PdCollision, FrictionHoldsOrSlidesAsCoulombOnATiltedPlane) {
 // 4. Cloth-cloth: two stacked cloths dropped on a sphere.
 
 // Two horizontal grids, the upper one smaller and offset by half a cell, 1 cm apart.
-newton::ClothModel stackedCloths() {
+drape::model::ClothModel stackedCloths() {
   GridClothOptions lower;
   lower.nx = lower.ny = 15;
   lower.width = lower.height = 0.5;
@@ -233,8 +233,8 @@ newton::ClothModel stackedCloths() {
   upper.nx = upper.ny = 13;
   upper.width = upper.height = 0.5 * 12.0 / 14.0;
   upper.elevation = 0.23;
-  const newton::ClothModel a = makeGridCloth(lower), b = makeGridCloth(upper);
-  newton::ClothModel m = a;
+  const drape::model::ClothModel a = makeGridCloth(lower), b = makeGridCloth(upper);
+  drape::model::ClothModel m = a;
   const int na = a.numVertices(), nb = b.numVertices();
   m.restCoords.resize(na + nb, 2);
   m.restCoords << a.restCoords, b.restCoords;
@@ -252,7 +252,7 @@ newton::ClothModel stackedCloths() {
 
 // Smallest height of an upper-cloth vertex above the lower cloth (positive = the side it started on), over the
 // upper vertices whose closest lower-cloth feature is a triangle's interior less than 3 cm away.
-double smallestSeparation(const newton::ClothModel& model, const Eigen::MatrixX3d& x, int lowerVertices) {
+double smallestSeparation(const drape::model::ClothModel& model, const Eigen::MatrixX3d& x, int lowerVertices) {
   const int lowerTriangles = 2 * 14 * 14;
   double smallest = 1e9;
   for (int v = lowerVertices; v < x.rows(); ++v) {
@@ -280,7 +280,7 @@ double smallestSeparation(const newton::ClothModel& model, const Eigen::MatrixX3
 
 // Number of (edge, triangle) pairs, an edge of one layer through a triangle of the other, at x: an exact test of
 // interpenetration, independent of the solver's own pair sides (signed volumes; 0 = the layers do not cross).
-int layerIntersections(const newton::ClothModel& model, const Eigen::MatrixX3d& x, int lowerTriangles) {
+int layerIntersections(const drape::model::ClothModel& model, const Eigen::MatrixX3d& x, int lowerTriangles) {
   auto volume = [](const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                    const Eigen::Vector3d& c) { return (a - p).dot((b - p).cross(c - p)); };
   auto crosses = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& a,
@@ -306,7 +306,7 @@ int layerIntersections(const newton::ClothModel& model, const Eigen::MatrixX3d& 
 
 // collisionMs: mean collision time per step (detection, contact solve, end-of-step resolve), milliseconds.
 double stackedDrop(bool self, int steps, int* selfContacts, int* intersections, double* collisionMs = nullptr) {
-  const newton::ClothModel model = stackedCloths();
+  const drape::model::ClothModel model = stackedCloths();
   PreviewSettings s;
   s.selfCollision = self;
   s.domains = 2;
@@ -340,7 +340,7 @@ double stackedDrop(bool self, int steps, int* selfContacts, int* intersections, 
 // still touches another primitive rolled back to its start. Run with --gtest_repeat to check determinism.
 TEST(PdCollision, StackedClothsOnASphereDoNotInterpenetrate) {
   // Check the helper's orientation at rest: the upper cloth starts 1 cm above the lower one.
-  const newton::ClothModel model = stackedCloths();
+  const drape::model::ClothModel model = stackedCloths();
   EXPECT_NEAR(smallestSeparation(model, rowsOf(model.positions), 225), 0.01, 1e-9);
   int contactsOn = 0, contactsOff = 0, crossingsOn = 0, crossingsOff = 0;
   double msOn = 0.0, msOff = 0.0;
@@ -462,7 +462,7 @@ std::vector<int> identity(int n) {
 // The stacked cloths at rest; the upper cloth's vertices within 6 cm of the axis move 5 cm down (through the
 // lower cloth, 1 cm below), those between 6 and 15 cm move 5 mm down (towards it, without reaching it).
 struct TunnelScene {
-  newton::ClothModel model = stackedCloths();
+  drape::model::ClothModel model = stackedCloths();
   Eigen::MatrixX3d start, x;
   std::vector<int> inner, ring;
   TunnelScene() {
@@ -580,7 +580,7 @@ TEST(PdCollision, CcdGuardCatchesAnEdgeThroughAnEdge) {
 // The cloth contact's results do not depend on thread scheduling: two runs with 1 and 2 threads end at the same
 // positions, bit for bit.
 TEST(PdCollision, StackedDropIsDeterministic) {
-  const newton::ClothModel model = stackedCloths();
+  const drape::model::ClothModel model = stackedCloths();
   auto run = [&](int threads) {
     PreviewSettings s;
     s.selfCollision = true;
@@ -626,7 +626,7 @@ TEST(PdCollision, TableclothOnASphereWithClothContactNeverSelfIntersects) {
   o.horizontal = true;
   o.elevation = 0.33;
   o.pinTopCorners = false;
-  const newton::ClothModel model = makeGridCloth(o);
+  const drape::model::ClothModel model = makeGridCloth(o);
   auto collider = std::make_shared<const collision::AvatarCollider>(makeIcosphere(Eigen::Vector3d::Zero(), 0.3, 5));
   const int steps = 60;
   auto run = [&](bool self, double& collisionMs, int& worst) {

@@ -16,7 +16,7 @@
 namespace drape::pd::test {
 
 struct ContactProblem {
-  newton::ClothModel model;
+  drape::model::ClothModel model;
   std::unique_ptr<PdSystem> system;
   std::unique_ptr<MonolithicSolver> solver;
   Eigen::MatrixX3d b;  // right-hand side of eq. 3

@@ -239,7 +239,7 @@ TEST(PdContactSpeed, ClothOnSphereSettlesWithDualCgAndWarmStart) {
   o.horizontal = true;
   o.elevation = 0.33;
   o.pinTopCorners = false;
-  const newton::ClothModel model = makeGridCloth(o);
+  const drape::model::ClothModel model = makeGridCloth(o);
   auto collider = std::make_shared<collision::AvatarCollider>(makeIcosphere(Eigen::Vector3d::Zero(), 0.3, 4));
   int solves[2] = {0, 0};
   int index = 0;

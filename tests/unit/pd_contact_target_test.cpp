@@ -65,7 +65,7 @@ TriangleMesh valleyBlock(double w, double base, double halfLength) {
 }
 
 // Edge strains |x_i - x_j| / |r_i - r_j| - 1 of every triangle edge (rest lengths from the material coords).
-std::vector<double> edgeStrains(const newton::ClothModel& model, const Eigen::MatrixX3d& x) {
+std::vector<double> edgeStrains(const drape::model::ClothModel& model, const Eigen::MatrixX3d& x) {
   std::vector<double> s;
   for (int t = 0; t < model.triangles.rows(); ++t)
     for (int k = 0; k < 3; ++k) {
@@ -94,7 +94,7 @@ struct SettleResult {
   Eigen::MatrixX3d x;           // final positions
 };
 
-SettleResult settle(const newton::ClothModel& model, const PreviewSettings& s,
+SettleResult settle(const drape::model::ClothModel& model, const PreviewSettings& s,
                     const std::shared_ptr<const collision::AvatarCollider>& collider, int steps) {
   PreviewSolver solver(model, s, collider);
   SettleResult out;
@@ -289,7 +289,7 @@ TEST(PdContactTarget, HeldTargetIsLetGoInFrontOfItsPlane) {
 // ---------------------------------------------------------------------------------------------------------------
 // 2. L-G convergence: a cloth dropped into the valley's 90-degree crease.
 
-newton::ClothModel clothOverTheValley() {
+drape::model::ClothModel clothOverTheValley() {
   GridClothOptions o;
   o.nx = o.ny = 25;
   o.width = o.height = 0.4;
@@ -300,7 +300,7 @@ newton::ClothModel clothOverTheValley() {
 }
 
 TEST(PdContactTarget, ClothInACreaseConvergesWellBelowTheIterationCap) {
-  const newton::ClothModel model = clothOverTheValley();
+  const drape::model::ClothModel model = clothOverTheValley();
   auto collider = std::make_shared<const collision::AvatarCollider>(valleyBlock(0.3, 0.2, 0.3));
   PreviewSettings s;
   s.contactTargets = ContactTargetKind::StepPlanes;
@@ -343,7 +343,7 @@ TEST(PdContactTarget, FrictionDoesNotLockTheLandingStretch) {
   const double radius = 0.3;
   o.elevation = radius + 0.2;
   o.pinTopCorners = false;
-  newton::ClothModel model = makeGridCloth(o);
+  drape::model::ClothModel model = makeGridCloth(o);
   model.fabrics[0].stretchWarp = 6000.0;
   model.fabrics[0].stretchWeft = 4000.0;
   model.fabrics[0].shear = 40.0;

@@ -18,15 +18,15 @@ namespace drape::pd {
 namespace {
 
 // Two panels meshed independently side by side, joined by stitches along their shared side, with pins.
-newton::ClothModel twoPanelCloth() {
+drape::model::ClothModel twoPanelCloth() {
   GridClothOptions o;
   o.nx = 24;
   o.ny = 30;
   o.width = 0.5;
   o.height = 0.6;
-  newton::ClothModel a = makeGridCloth(o);
+  drape::model::ClothModel a = makeGridCloth(o);
   const int nv = a.numVertices();
-  newton::ClothModel m = a;
+  drape::model::ClothModel m = a;
   m.restCoords.conservativeResize(2 * nv, 2);
   m.positions.conservativeResize(6 * nv);
   m.triangles.conservativeResize(2 * a.triangles.rows(), 3);
@@ -41,7 +41,7 @@ newton::ClothModel twoPanelCloth() {
 }
 
 TEST(PdDdSolver, DomainMatricesSumToK) {
-  const newton::ClothModel model = twoPanelCloth();
+  const drape::model::ClothModel model = twoPanelCloth();
   PdSystem sys(model, PreviewSettings{});
   const int d = 8;
   const auto part = partitionTriangles(model.triangles, model.numVertices(), model.stitches, d);
@@ -65,7 +65,7 @@ TEST(PdDdSolver, DomainMatricesSumToK) {
 }
 
 TEST(PdDdSolver, EqualsMonolithicForManyDomainCounts) {
-  const newton::ClothModel model = twoPanelCloth();
+  const drape::model::ClothModel model = twoPanelCloth();
   PdSystem sys(model, PreviewSettings{});
   const int n = sys.freeCount();
   std::mt19937 rng(7);

@@ -20,7 +20,7 @@ namespace drape::pd {
 namespace {
 
 struct SeamedCloth {
-  newton::ClothModel model;
+  drape::model::ClothModel model;
   int leftVertices = 0;   // vertices [0, leftVertices) belong to the left panel
   int leftTriangles = 0;  // triangles [0, leftTriangles) belong to the left panel
 };
@@ -37,16 +37,16 @@ SeamedCloth seamedCloth(int nx1, int ny1, int nx2, int ny2, double gap) {
   o.pinTopCorners = false;
   o.nx = nx1;
   o.ny = ny1;
-  const newton::ClothModel a = makeGridCloth(o);
+  const drape::model::ClothModel a = makeGridCloth(o);
   o.nx = nx2;
   o.ny = ny2;
-  const newton::ClothModel b = makeGridCloth(o);
+  const drape::model::ClothModel b = makeGridCloth(o);
   const int na = a.numVertices(), nb = b.numVertices();
   const int ta = static_cast<int>(a.triangles.rows()), tb = static_cast<int>(b.triangles.rows());
   SeamedCloth out;
   out.leftVertices = na;
   out.leftTriangles = ta;
-  newton::ClothModel& m = out.model;
+  drape::model::ClothModel& m = out.model;
   m.fabrics = a.fabrics;
   m.restCoords.resize(na + nb, 2);
   m.restCoords << a.restCoords, b.restCoords;
@@ -67,9 +67,9 @@ SeamedCloth seamedCloth(int nx1, int ny1, int nx2, int ny2, double gap) {
 }
 
 // Distance between each edge-stitched vertex and its edge point, metres.
-double maxSeamGap(const newton::ClothModel& m, const Eigen::VectorXd& x) {
+double maxSeamGap(const drape::model::ClothModel& m, const Eigen::VectorXd& x) {
   double gap = 0.0;
-  for (const newton::EdgeStitch& e : m.edgeStitches) {
+  for (const drape::model::EdgeStitch& e : m.edgeStitches) {
     const Eigen::Vector3d p = (1.0 - e.t) * x.segment<3>(3 * e.a) + e.t * x.segment<3>(3 * e.b);
     gap = std::max(gap, (x.segment<3>(3 * e.vertex) - p).norm());
   }
@@ -92,11 +92,11 @@ Eigen::SparseMatrix<double> sumOfDomains(const std::vector<DomainMatrix>& domain
 
 TEST(PdNonconforming, EdgeStitchAddsTheStencilToK) {
   const SeamedCloth sc = seamedCloth(9, 11, 6, 8, 0.02);
-  const newton::ClothModel& m = sc.model;
+  const drape::model::ClothModel& m = sc.model;
   PreviewSettings s;
   s.stitchWeight = 3e4;
   PdSystem with(m, s);
-  newton::ClothModel without = m;
+  drape::model::ClothModel without = m;
   without.edgeStitches.clear();
   PdSystem bare(without, s);
   ASSERT_EQ(with.freeCount(), bare.freeCount());
@@ -104,7 +104,7 @@ TEST(PdNonconforming, EdgeStitchAddsTheStencilToK) {
   const int n = with.freeCount();
   Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(n, n);
   const auto& dof = with.dofOfVertex();
-  for (const newton::EdgeStitch& e : m.edgeStitches) {
+  for (const drape::model::EdgeStitch& e : m.edgeStitches) {
     const int v[3] = {e.vertex, e.a, e.b};
     const double a[3] = {1.0, -(1.0 - e.t), -e.t};
     for (int i = 0; i < 3; ++i)
@@ -125,7 +125,7 @@ TEST(PdNonconforming, EdgeStitchAddsTheStencilToK) {
   ASSERT_EQ(with.stencils().size(), bare.stencils().size() + m.edgeStitches.size());
   for (size_t k = 0; k < m.edgeStitches.size(); ++k) {
     const Stencil& st = with.stencils()[bare.stencils().size() + k];
-    const newton::EdgeStitch& e = m.edgeStitches[k];
+    const drape::model::EdgeStitch& e = m.edgeStitches[k];
     EXPECT_EQ(st.size, 3);
     EXPECT_EQ(st.vertices[0], e.vertex);
     EXPECT_EQ(st.vertices[1], e.a);
@@ -138,8 +138,8 @@ TEST(PdNonconforming, EdgeStitchAddsTheStencilToK) {
 TEST(PdNonconforming, ValidationNamesTheBadEdgeStitch) {
   SeamedCloth sc = seamedCloth(5, 5, 4, 4, 0.0);
   const int nv = sc.model.numVertices();
-  auto expectError = [&](newton::EdgeStitch e, const std::string& fragment) {
-    newton::ClothModel m = sc.model;
+  auto expectError = [&](drape::model::EdgeStitch e, const std::string& fragment) {
+    drape::model::ClothModel m = sc.model;
     m.edgeStitches[2] = e;
     try {
       PdSystem sys(m, PreviewSettings{});
@@ -158,7 +158,7 @@ TEST(PdNonconforming, ValidationNamesTheBadEdgeStitch) {
 
 TEST(PdNonconforming, DomainMatricesSumToKAndTheSeamCrossesDomains) {
   const SeamedCloth sc = seamedCloth(24, 30, 17, 22, 0.0);
-  const newton::ClothModel& m = sc.model;
+  const drape::model::ClothModel& m = sc.model;
   PdSystem sys(m, PreviewSettings{});
   // Hand-made partition: one domain per panel, so every edge stitch is an interface between the two.
   std::vector<int> byPanel(m.triangles.rows(), 0);
@@ -174,7 +174,7 @@ TEST(PdNonconforming, DomainMatricesSumToKAndTheSeamCrossesDomains) {
   // With the per-panel split, every stitched vertex of the right panel is also held by the left domain.
   DomainDecomposedSolver dd(splitSystem(sys, byPanel, 2), sys.freeCount());
   ASSERT_TRUE(dd.ok());
-  for (const newton::EdgeStitch& e : m.edgeStitches)
+  for (const drape::model::EdgeStitch& e : m.edgeStitches)
     EXPECT_EQ(dd.dofClasses()[sys.dofOfVertex()[e.vertex]], DofClass::Duplicate) << "vertex " << e.vertex;
   EXPECT_EQ(dd.duplicateCount(), static_cast<int>(m.edgeStitches.size()));
   EXPECT_EQ(dd.cornerCount(), 0);
@@ -183,7 +183,7 @@ TEST(PdNonconforming, DomainMatricesSumToKAndTheSeamCrossesDomains) {
 TEST(PdNonconforming, PartitionLinksTheStitchedTriangles) {
   // Two panels with a gap: without the stitches' links the triangle graph has two components.
   const SeamedCloth sc = seamedCloth(12, 14, 9, 11, 0.05);
-  const newton::ClothModel& m = sc.model;
+  const drape::model::ClothModel& m = sc.model;
   // D = 1 is trivial; with D = 2 METIS on the linked graph must still give every triangle a valid domain.
   for (int d : {2, 5}) {
     const auto part = partitionTriangles(m.triangles, m.numVertices(), m.stitches, m.edgeStitches, d);
@@ -200,7 +200,7 @@ TEST(PdNonconforming, PartitionLinksTheStitchedTriangles) {
 
 TEST(PdNonconforming, DecomposedSolveEqualsMonolithicForManyDomainCounts) {
   const SeamedCloth sc = seamedCloth(24, 30, 17, 22, 0.01);
-  const newton::ClothModel& m = sc.model;
+  const drape::model::ClothModel& m = sc.model;
   PdSystem sys(m, PreviewSettings{});
   const int n = sys.freeCount();
   std::mt19937 rng(13);
@@ -218,7 +218,7 @@ TEST(PdNonconforming, DecomposedSolveEqualsMonolithicForManyDomainCounts) {
     // Count the edge stitches whose vertex's triangles and edge lie in different domains (a non-conforming
     // interface between domains): METIS is free to cut along the seam or not, so only report it.
     int crossing = 0;
-    for (const newton::EdgeStitch& e : m.edgeStitches) {
+    for (const drape::model::EdgeStitch& e : m.edgeStitches) {
       const int tv = sys.incidentTriangles()[sys.incidentOffsets()[e.vertex]];
       const int te = sys.incidentTriangles()[sys.incidentOffsets()[e.a]];
       crossing += part[tv] != part[te];
@@ -250,7 +250,7 @@ TEST(PdNonconforming, DecomposedSolveEqualsMonolithicForManyDomainCounts) {
 TEST(PdNonconforming, PreviewClosesTheSeam) {
   const double gap = 0.03;
   SeamedCloth sc = seamedCloth(16, 19, 11, 14, gap);
-  newton::ClothModel& m = sc.model;
+  drape::model::ClothModel& m = sc.model;
   // The right pin holds its corner where the closed seam puts it (the panels' rest width apart).
   m.pinTargets = {m.positions.segment<3>(3 * m.pinned[0]),
                   m.positions.segment<3>(3 * m.pinned[1]) - Eigen::Vector3d(gap, 0.0, 0.0)};
@@ -281,7 +281,7 @@ TEST(PdNonconforming, PreviewClosesTheSeam) {
 // gap has stayed below sewnGap for sewnTime, for good; never with sewnGap 0.
 TEST(PdNonconforming, SeamCountsAsSewnOnceItStayedClosed) {
   SeamedCloth sc = seamedCloth(16, 19, 11, 14, 0.03);
-  newton::ClothModel& m = sc.model;
+  drape::model::ClothModel& m = sc.model;
   m.pinTargets = {m.positions.segment<3>(3 * m.pinned[0]),
                   m.positions.segment<3>(3 * m.pinned[1]) - Eigen::Vector3d(0.03, 0.0, 0.0)};
   PreviewSettings s;

@@ -15,8 +15,8 @@ namespace drape::test {
 namespace {
 
 // A square of side `side` (metres) in two triangles, one fabric per triangle.
-newton::ClothModel twoTriangleSquare(double side, const newton::TriangleFabric& a, const newton::TriangleFabric& b) {
-  newton::ClothModel m;
+drape::model::ClothModel twoTriangleSquare(double side, const drape::model::TriangleFabric& a, const drape::model::TriangleFabric& b) {
+  drape::model::ClothModel m;
   m.restCoords.resize(4, 2);
   m.restCoords << 0, 0, side, 0, side, side, 0, side;
   m.triangles.resize(2, 3);
@@ -26,8 +26,8 @@ newton::ClothModel twoTriangleSquare(double side, const newton::TriangleFabric& 
   return m;
 }
 
-newton::TriangleFabric fabric(double warp, double weft, double shear, double density) {
-  newton::TriangleFabric f;
+drape::model::TriangleFabric fabric(double warp, double weft, double shear, double density) {
+  drape::model::TriangleFabric f;
   f.stretchWarp = warp;
   f.stretchWeft = weft;
   f.shear = shear;
@@ -40,18 +40,18 @@ newton::TriangleFabric fabric(double warp, double weft, double shear, double den
 TEST(PreviewFabric, CourantNumberIsTheFastestWaveOverTheMeanEdge) {
   const double side = 0.02, h = 1.0 / 480.0;
   // Wave speeds sqrt(400 / 0.25) = 40 m/s and sqrt(100 / 0.5) = 14.1 m/s; edges: four sides and the diagonal twice.
-  const newton::ClothModel m = twoTriangleSquare(side, fabric(400, 100, 10, 0.25), fabric(100, 50, 5, 0.5));
+  const drape::model::ClothModel m = twoTriangleSquare(side, fabric(400, 100, 10, 0.25), fabric(100, 50, 5, 0.5));
   const double meanEdge = side * (4.0 + 2.0 * std::sqrt(2.0)) / 6.0;
   EXPECT_NEAR(pd::courantNumber(m, h), 40.0 * h / meanEdge, 1e-12);
 }
 
 TEST(PreviewFabric, SoftensOnlyTheFabricsAboveTheLimitToTheLimit) {
   const double side = 0.02, h = 1.0 / 480.0;
-  const newton::TriangleFabric stiff = fabric(6000, 4000, 60, 0.12), soft = fabric(300, 150, 20, 0.18);
-  const newton::ClothModel m = twoTriangleSquare(side, stiff, soft);
+  const drape::model::TriangleFabric stiff = fabric(6000, 4000, 60, 0.12), soft = fabric(300, 150, 20, 0.18);
+  const drape::model::ClothModel m = twoTriangleSquare(side, stiff, soft);
   const double limit = 5.0;
   ASSERT_GT(pd::courantNumber(m, h), limit);
-  const newton::ClothModel p = pd::previewFabricModel(m, h, limit);
+  const drape::model::ClothModel p = pd::previewFabricModel(m, h, limit);
   EXPECT_NEAR(pd::courantNumber(p, h), limit, 1e-9);
   // The stiff fabric: stretch and shear scaled by one factor (its anisotropy kept), the rest as it was.
   const double scale = p.fabrics[0].stretchWarp / stiff.stretchWarp;

@@ -15,7 +15,7 @@
 namespace drape::pd {
 namespace {
 
-newton::ClothModel hangingCloth(int n = 24) {
+drape::model::ClothModel hangingCloth(int n = 24) {
   GridClothOptions o;
   o.nx = n;
   o.ny = n;
@@ -23,7 +23,7 @@ newton::ClothModel hangingCloth(int n = 24) {
 }
 
 // Runs `steps` steps and returns the total L-G iteration count.
-int totalIterations(const newton::ClothModel& model, PreviewSettings s, int steps, Eigen::VectorXd* finalX = nullptr) {
+int totalIterations(const drape::model::ClothModel& model, PreviewSettings s, int steps, Eigen::VectorXd* finalX = nullptr) {
   PreviewSolver solver(model, s);
   int total = 0;
   for (int i = 0; i < steps; ++i) {
@@ -36,7 +36,7 @@ int totalIterations(const newton::ClothModel& model, PreviewSettings s, int step
 }
 
 TEST(PdPreviewSolver, HangingClothFallsAndPinsHold) {
-  const newton::ClothModel model = hangingCloth();
+  const drape::model::ClothModel model = hangingCloth();
   PreviewSettings s;
   s.domains = 4;
   PreviewSolver solver(model, s);
@@ -56,7 +56,7 @@ TEST(PdPreviewSolver, HangingClothFallsAndPinsHold) {
 }
 
 TEST(PdPreviewSolver, DecomposedAndMonolithicGiveTheSameStep) {
-  const newton::ClothModel model = hangingCloth(16);
+  const drape::model::ClothModel model = hangingCloth(16);
   PreviewSettings s;
   s.domains = 6;
   s.maxIterations = 8;
@@ -75,7 +75,7 @@ TEST(PdPreviewSolver, DecomposedAndMonolithicGiveTheSameStep) {
 // vs 2000 N/m) both need about twice the iterations, the slow shear mode dominates and Gauss-Seidel is only not
 // worse (measured: 123 vs 123 at h = 1/120, 275 vs 288 at 1/60).
 TEST(PdPreviewSolver, GaussSeidelNeedsFewerIterationsThanJacobi) {
-  const newton::ClothModel model = hangingCloth(30);
+  const drape::model::ClothModel model = hangingCloth(30);
   for (ShearModelKind shear : {ShearModelKind::Stretch, ShearModelKind::Fabric})
     for (double h : {1.0 / 120.0, 1.0 / 60.0}) {
       PreviewSettings s;
@@ -105,7 +105,7 @@ TEST(PdPreviewSolver, GaussSeidelNeedsFewerIterationsThanJacobi) {
 }
 
 TEST(PdPreviewSolver, TraversalOrdersAreSpanningAndStartAtPins) {
-  const newton::ClothModel model = hangingCloth(12);
+  const drape::model::ClothModel model = hangingCloth(12);
   PreviewSettings s;
   PdSystem sys(model, s);
   std::vector<int> part(model.triangles.rows(), 0);
@@ -125,7 +125,7 @@ TEST(PdPreviewSolver, TraversalOrdersAreSpanningAndStartAtPins) {
 }
 
 TEST(PdPreviewSolver, NonFiniteStateIsRestoredAndReportedDiverged) {
-  newton::ClothModel model = hangingCloth(8);
+  drape::model::ClothModel model = hangingCloth(8);
   model.velocities = Eigen::VectorXd::Zero(model.positions.size());
   model.velocities[3 * 5] = std::nan("");
   PreviewSolver solver(model, PreviewSettings{});
@@ -137,7 +137,7 @@ TEST(PdPreviewSolver, NonFiniteStateIsRestoredAndReportedDiverged) {
 }
 
 TEST(PdPreviewSolver, CancelRestoresTheStep) {
-  const newton::ClothModel model = hangingCloth(8);
+  const drape::model::ClothModel model = hangingCloth(8);
   PreviewSolver solver(model, PreviewSettings{});
   const Eigen::VectorXd before = solver.positions();
   solver.requestCancel();
@@ -147,7 +147,7 @@ TEST(PdPreviewSolver, CancelRestoresTheStep) {
 }
 
 TEST(PdPreviewSolver, BadModelThrowsInputError) {
-  newton::ClothModel model = hangingCloth(4);
+  drape::model::ClothModel model = hangingCloth(4);
   model.triangles(2, 1) = 99;
   EXPECT_THROW(PreviewSolver(model, PreviewSettings{}), InputError);
 }
@@ -160,7 +160,7 @@ TEST(PdPreviewSolver, ClothDropsOnSphereWithoutPenetration) {
   o.horizontal = true;
   o.elevation = 0.33;
   o.pinTopCorners = false;
-  const newton::ClothModel model = makeGridCloth(o);
+  const drape::model::ClothModel model = makeGridCloth(o);
   const double radius = 0.3;
   auto collider = std::make_shared<collision::AvatarCollider>(makeIcosphere(Eigen::Vector3d::Zero(), radius, 4));
   for (ContactSolveKind kind : {ContactSolveKind::DualThenPcg, ContactSolveKind::Pcg}) {

@@ -17,8 +17,8 @@ namespace {
 
 using Mat32 = Eigen::Matrix<double, 3, 2>;
 
-newton::TriangleFabric fabric(double warp, double weft, double shear) {
-  newton::TriangleFabric f;
+drape::model::TriangleFabric fabric(double warp, double weft, double shear) {
+  drape::model::TriangleFabric f;
   f.stretchWarp = warp;
   f.stretchWeft = weft;
   f.shear = shear;
@@ -27,14 +27,14 @@ newton::TriangleFabric fabric(double warp, double weft, double shear) {
 
 // A 4 x 4 grid (both diagonal directions) of 0.3 x 0.2 m, placed by the affine map x = q a u (u: rest coords,
 // a: 2 x 2 in-plane deformation, q: a 3D rotation onto a tilted plane).
-newton::ClothModel deformedPatch(const newton::TriangleFabric& fab, const Eigen::Matrix2d& a) {
+drape::model::ClothModel deformedPatch(const drape::model::TriangleFabric& fab, const Eigen::Matrix2d& a) {
   GridClothOptions o;
   o.nx = 4;
   o.ny = 4;
   o.width = 0.3;
   o.height = 0.2;
   o.pinTopCorners = false;
-  newton::ClothModel m = makeGridCloth(o);
+  drape::model::ClothModel m = makeGridCloth(o);
   m.fabrics = {fab};
   const Eigen::Matrix3d q = Eigen::AngleAxisd(0.8, Eigen::Vector3d(1.0, -2.0, 0.5).normalized()).toRotationMatrix();
   for (int v = 0; v < m.numVertices(); ++v) {
@@ -56,9 +56,9 @@ Eigen::MatrixX3d asRows(const Eigen::VectorXd& x) {
 }
 
 // PD strain energy and StVK membrane energy of the patch under in-plane deformation a.
-std::pair<double, double> energies(const newton::TriangleFabric& fab, const Eigen::Matrix2d& a,
+std::pair<double, double> energies(const drape::model::TriangleFabric& fab, const Eigen::Matrix2d& a,
                                    const PreviewSettings& s = fabricShear()) {
-  const newton::ClothModel m = deformedPatch(fab, a);
+  const drape::model::ClothModel m = deformedPatch(fab, a);
   const PdSystem pd(m, s);
   const newton::StvkMembrane stvk(m);
   return {pd.strainEnergy(asRows(m.positions)), stvk.value(m.positions)};
@@ -66,7 +66,7 @@ std::pair<double, double> energies(const newton::TriangleFabric& fab, const Eige
 
 TEST(PdShear, SmallPureShearEnergyMatchesStvkMembrane) {
   for (const double shear : {50.0, 250.0, 1000.0}) {
-    const newton::TriangleFabric fab = fabric(5000.0, 3000.0, shear);
+    const drape::model::TriangleFabric fab = fabric(5000.0, 3000.0, shear);
     // Symmetric pure shear (S = a, stretch part zero) and simple shear (a rotation on top).
     for (const Eigen::Matrix2d& a : {Eigen::Matrix2d((Eigen::Matrix2d() << 1.0, 0.005, 0.005, 1.0).finished()),
                                      Eigen::Matrix2d((Eigen::Matrix2d() << 1.0, 0.01, 0.0, 1.0).finished())}) {
@@ -84,7 +84,7 @@ TEST(PdShear, SmallPureShearEnergyMatchesStvkMembrane) {
 }
 
 TEST(PdShear, SmallStretchEnergyMatchesStvkMembraneWithTightLimits) {
-  const newton::TriangleFabric fab = fabric(5000.0, 3000.0, 250.0);
+  const drape::model::TriangleFabric fab = fabric(5000.0, 3000.0, 250.0);
   PreviewSettings s = fabricShear();
   s.warpLimits = {1.0, 1.0};
   s.weftLimits = {1.0, 1.0};
@@ -113,14 +113,14 @@ TEST(PdShear, SmallStretchEnergyMatchesStvkMembraneWithTightLimits) {
 // ShearModelKind::Stretch is pd-dd's constraint (w_c / 2) |F_c - R clamp(S)_c|^2: a pure shear S01 = S10 = s
 // costs A (kWarp + kWeft) / 2 s^2, the fabric's shear stiffness unused, and K has only the stretch weights.
 TEST(PdShear, StretchHeldShearIsThePaperConstraint) {
-  const newton::TriangleFabric fab = fabric(5000.0, 3000.0, 250.0);
+  const drape::model::TriangleFabric fab = fabric(5000.0, 3000.0, 250.0);
   PreviewSettings s = fabricShear();
   s.shearModel = ShearModelKind::Stretch;
   const double shear = 0.005;
   const Eigen::Matrix2d a = (Eigen::Matrix2d() << 1.0, shear, shear, 1.0).finished();
   const double area = 0.3 * 0.2;
   EXPECT_NEAR(energies(fab, a, s).first, area * 4000.0 * shear * shear, 1e-9 * area * 4000.0 * shear * shear);
-  const newton::ClothModel m = deformedPatch(fab, a);
+  const drape::model::ClothModel m = deformedPatch(fab, a);
   const PdSystem pd(m, s);
   EXPECT_TRUE(pd.stretchHoldsShear());
   for (const StrainConstraint& sc : pd.strains()) {
@@ -158,8 +158,8 @@ TEST(PdShear, ProjectionsSplitStretchFromShear) {
 }
 
 TEST(PdShear, SystemMatrixCarriesStretchPlusShearWeights) {
-  const newton::TriangleFabric fab = fabric(5000.0, 3000.0, 250.0);
-  const newton::ClothModel m = deformedPatch(fab, Eigen::Matrix2d::Identity());
+  const drape::model::TriangleFabric fab = fabric(5000.0, 3000.0, 250.0);
+  const drape::model::ClothModel m = deformedPatch(fab, Eigen::Matrix2d::Identity());
   const PdSystem pd(m, fabricShear());
   const double area = 0.1 * (0.2 / 3.0) / 2.0;
   for (const StrainConstraint& sc : pd.strains()) {
@@ -193,7 +193,7 @@ double shearedTopDisplacement(double shear, double* expected) {
   o.width = 1.2;
   o.height = 0.2;
   o.pinTopCorners = false;
-  newton::ClothModel m = makeGridCloth(o);
+  drape::model::ClothModel m = makeGridCloth(o);
   m.fabrics = {fabric(5000.0, 5000.0, shear)};
   m.fabrics[0].bendWarp = m.fabrics[0].bendWeft = 0.0;  // in-plane problem
   const double g = 20.0;

@@ -14,7 +14,7 @@
 namespace drape::pd {
 namespace {
 
-newton::ClothModel hangingCloth() {
+drape::model::ClothModel hangingCloth() {
   GridClothOptions o;
   o.nx = o.ny = 16;
   return makeGridCloth(o);
@@ -33,7 +33,7 @@ PreviewSettings oneIteration(double tolerance, int maxHalvings) {
 }
 
 TEST(PdStepHalving, CappedStepIsRedoneFromItsStartAtHalfTheStep) {
-  const newton::ClothModel model = hangingCloth();
+  const drape::model::ClothModel model = hangingCloth();
   // The first iteration at h = 1/120 s moves ~5e-4 of the cloth's size, at h / 4 ~16x less: 1e-5 is beyond both.
   const PreviewSettings s = oneIteration(1e-5, 2);
   PreviewSolver solver(model, s);

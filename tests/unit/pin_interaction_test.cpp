@@ -14,7 +14,7 @@ namespace drape::test {
 namespace {
 
 // A 0.5 m x 0.5 m cloth (11 x 11 vertices) hanging from its top corners.
-newton::ClothModel smallCloth() {
+drape::model::ClothModel smallCloth() {
   pd::GridClothOptions o;
   o.nx = o.ny = 11;
   o.width = o.height = 0.5;
@@ -24,21 +24,21 @@ newton::ClothModel smallCloth() {
 Eigen::Vector3d vertex(const Eigen::VectorXd& x, int v) { return x.segment<3>(3 * v); }
 
 // Both corners move up by 0.3 m and the right one also 0.2 m along +z, linearly over [0.05, 0.25] s.
-Eigen::Vector3d cornerPath(const newton::ClothModel& model, int k, double t) {
+Eigen::Vector3d cornerPath(const drape::model::ClothModel& model, int k, double t) {
   const double s = std::clamp((t - 0.05) / 0.2, 0.0, 1.0);
   const Eigen::Vector3d start = vertex(model.positions, model.pinned[k]);
   return start + s * Eigen::Vector3d(0.0, 0.3, k == 1 ? 0.2 : 0.0);
 }
 
-newton::ClothModel movingCornerCloth() {
-  newton::ClothModel model = smallCloth();
-  const newton::ClothModel initial = model;
+drape::model::ClothModel movingCornerCloth() {
+  drape::model::ClothModel model = smallCloth();
+  const drape::model::ClothModel initial = model;
   model.pinTrajectory = [initial](int k, double t) { return cornerPath(initial, k, t); };
   return model;
 }
 
 TEST(MovingPins, NewtonPinsFollowTheirTrajectory) {
-  const newton::ClothModel model = movingCornerCloth();
+  const drape::model::ClothModel model = movingCornerCloth();
   newton::NewtonSettings settings;
   settings.hMax = 2e-3;
   newton::NewtonSolver solver(model, settings);
@@ -51,7 +51,7 @@ TEST(MovingPins, NewtonPinsFollowTheirTrajectory) {
 }
 
 TEST(MovingPins, PreviewPinsFollowTheirTrajectoryExactly) {
-  const newton::ClothModel model = movingCornerCloth();
+  const drape::model::ClothModel model = movingCornerCloth();
   pd::PreviewSettings settings;
   settings.domains = 2;
   pd::PreviewSolver solver(model, settings);

@@ -21,7 +21,7 @@
 namespace drape::test {
 namespace {
 
-using newton::ClothModel;
+using drape::model::ClothModel;
 
 // A hanging cloth with a stitch across it, so that the preconditioner has pins, stitches and fabric to hold.
 ClothModel stitchedHangingCloth() {

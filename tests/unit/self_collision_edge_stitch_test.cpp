@@ -21,8 +21,8 @@
 namespace drape {
 namespace {
 
-using newton::ClothModel;
-using newton::EdgeStitch;
+using drape::model::ClothModel;
+using drape::model::EdgeStitch;
 using newton::appendGridPanel;
 
 constexpr int kCoarse = 6;              // coarse panel: 6 x 6 vertices (4 cm spacing)
@@ -33,7 +33,7 @@ constexpr double kSize = 0.2;           // both panels 0.2 x 0.2 m
 // edge-stitched to the point at its height on the coarse panel's right column. gap = 0: the seam is closed.
 ClothModel seamedPanels(double gap) {
   ClothModel m;
-  newton::TriangleFabric cotton;
+  drape::model::TriangleFabric cotton;
   cotton.stretchWarp = cotton.stretchWeft = 5000.0;
   cotton.shear = 250.0;
   m.fabrics = {cotton};

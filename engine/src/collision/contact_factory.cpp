@@ -9,7 +9,7 @@ namespace drape::collision {
 std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(const ContactSetup& setup, int vertexCount,
                                                                  const Eigen::MatrixX3i& triangles,
                                                                  const std::vector<std::pair<int, int>>& stitches,
-                                                                 const std::vector<newton::EdgeStitch>& edgeStitches) {
+                                                                 const std::vector<model::EdgeStitch>& edgeStitches) {
   std::vector<std::unique_ptr<newton::Energy>> out;
   const AvatarContactEnergy* avatar = nullptr;
   const SelfContactEnergy* self = nullptr;

@@ -4,7 +4,7 @@
 
 namespace drape::newton {
 
-Eigen::VectorXd lumpedVertexMasses(const ClothModel& model) {
+Eigen::VectorXd lumpedVertexMasses(const model::ClothModel& model) {
   Eigen::VectorXd m = Eigen::VectorXd::Zero(model.numVertices());
   for (int t = 0; t < model.triangles.rows(); ++t) {
     Eigen::Vector2d p0 = model.restCoords.row(model.triangles(t, 0)).transpose();

@@ -116,7 +116,7 @@ HingeCoords gatherHinge(const Hinge& hinge, const Eigen::VectorXd& x) {
   return q;
 }
 
-std::vector<Hinge> buildHinges(const ClothModel& model) {
+std::vector<Hinge> buildHinges(const model::ClothModel& model) {
   std::map<std::pair<int, int>, std::pair<int, int>> edges;  // sorted edge -> (triangle, local index of opposite)
   std::vector<Hinge> out;
   for (int t = 0; t < model.triangles.rows(); ++t) {
@@ -143,7 +143,7 @@ std::vector<Hinge> buildHinges(const ClothModel& model) {
       double len2 = d.squaredNorm();
       Eigen::Vector2d dir = d / std::sqrt(len2);
       auto kb = [&](int tri) {
-        const TriangleFabric& f = model.fabric(tri);
+        const model::TriangleFabric& f = model.fabric(tri);
         return f.bendWarp * dir.y() * dir.y() + f.bendWeft * dir.x() * dir.x();
       };
       h.stiffness = 0.5 * (kb(t0) + kb(t)) * 3.0 * len2 / (area(t0) + area(t));
@@ -226,7 +226,7 @@ Eigen::Matrix<double, 12, 12> hingeBendHessian(const Hinge& hinge, const Eigen::
   });
 }
 
-HingeBending::HingeBending(const ClothModel& model) : m_hinges(buildHinges(model)) {
+HingeBending::HingeBending(const model::ClothModel& model) : m_hinges(buildHinges(model)) {
   std::vector<std::array<int, 4>> stencils;
   stencils.reserve(m_hinges.size());
   for (const auto& h : m_hinges) stencils.push_back(h.v);

@@ -32,7 +32,7 @@ const char* toString(NewtonStatus status) {
   return "unknown";
 }
 
-NewtonSolver::NewtonSolver(ClothModel model, NewtonSettings settings, std::vector<std::unique_ptr<Energy>> extra)
+NewtonSolver::NewtonSolver(model::ClothModel model, NewtonSettings settings, std::vector<std::unique_ptr<Energy>> extra)
     : m_model(std::move(model)), m_settings(settings) {
   const int n = m_model.numVertices();
   if (m_model.positions.size() != 3 * n)
@@ -56,7 +56,7 @@ NewtonSolver::NewtonSolver(ClothModel model, NewtonSettings settings, std::vecto
   bending->setExactHessian(!m_settings.projectHessians);
   std::vector<Hinge> hinges = bending->hinges();
   if (!bending->empty()) m_energies.push_back(std::move(bending));
-  validateStitches(m_model);
+  model::validateStitches(m_model);
   if (!m_model.stitches.empty() || !m_model.edgeStitches.empty())
     m_energies.push_back(
         std::make_unique<StitchSprings>(m_model.stitches, m_settings.stitchStiffness, m_model.edgeStitches));
@@ -128,7 +128,7 @@ void NewtonSolver::setDrag(int vertex, const Eigen::Vector3d& target) {
     m_drag->setPins({vertex}, {target});
 }
 
-void NewtonSolver::setQuasiNewton(std::shared_ptr<StepPreconditioner> preconditioner, QuasiNewtonSettings settings) {
+void NewtonSolver::setQuasiNewton(std::shared_ptr<model::StepPreconditioner> preconditioner, QuasiNewtonSettings settings) {
   m_quasiNewton = std::move(preconditioner);
   m_qnSettings = settings;
   // The Newton matrix and the last step's Newton data do not carry across the switch.

@@ -1,7 +1,7 @@
 // The quasi-Newton inner solve of NewtonSolver (the preview): L-BFGS on the incremental potential
 //   Phi(x) = 1 / (2 h^2) |x - x_n - h v_n|_M^2 + sum E(x),
 // whose gradient is -b / h with b Newton's momentum residual (eq. 4), so that both solvers stop on the same test and
-// rest at the same states. Two-loop recursion (Nocedal and Wright, Algorithm 7.4) with the StepPreconditioner as
+// rest at the same states. Two-loop recursion (Nocedal and Wright, Algorithm 7.4) with the model::StepPreconditioner as
 // the initial inverse Hessian (Liu, Bouaziz and Kavan 2017), backtracking Armijo line search.
 #include <Eigen/Eigenvalues>
 #include <chrono>

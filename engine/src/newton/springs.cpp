@@ -5,12 +5,12 @@
 namespace drape::newton {
 
 StitchSprings::StitchSprings(std::vector<std::pair<int, int>> pairs, double stiffness,
-                             const std::vector<EdgeStitch>& edges)
+                             const std::vector<model::EdgeStitch>& edges)
     : m_stiffness(stiffness) {
   m_stencils.reserve(pairs.size() + edges.size());
   for (auto [i, j] : pairs)
     if (i != j) m_stencils.push_back(Stencil{{i, j, 0}, {1.0, -1.0, 0.0}, 2});  // (v, v): no energy, skipped
-  for (const EdgeStitch& e : edges) m_stencils.push_back(Stencil{{e.vertex, e.a, e.b}, {1.0, -(1.0 - e.t), -e.t}, 3});
+  for (const model::EdgeStitch& e : edges) m_stencils.push_back(Stencil{{e.vertex, e.a, e.b}, {1.0, -(1.0 - e.t), -e.t}, 3});
 }
 
 Eigen::Vector3d StitchSprings::constraint(const Stencil& s, const Eigen::VectorXd& x) const {

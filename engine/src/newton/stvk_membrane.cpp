@@ -70,7 +70,7 @@ void addStrainHessianBlocks(const MembraneElement& e, const Eigen::Matrix<double
 
 }  // namespace
 
-std::vector<MembraneElement> buildMembraneElements(const ClothModel& model) {
+std::vector<MembraneElement> buildMembraneElements(const model::ClothModel& model) {
   std::vector<MembraneElement> out(model.triangles.rows());
   for (int t = 0; t < model.triangles.rows(); ++t) {
     MembraneElement& e = out[t];
@@ -87,7 +87,7 @@ std::vector<MembraneElement> buildMembraneElements(const ClothModel& model) {
     e.c[2] = inv.row(1).transpose();
     e.c[0] = -(e.c[1] + e.c[2]);
     e.area = 0.5 * std::abs(det);
-    const TriangleFabric& fab = model.fabric(t);
+    const model::TriangleFabric& fab = model.fabric(t);
     e.kWarp = fab.stretchWarp;
     e.kWeft = fab.stretchWeft;
     e.kShear = fab.shear;
@@ -109,7 +109,7 @@ Eigen::Matrix<double, 3, 9> greenStrainJacobian(const MembraneElement& e, const 
   return greenStrainJacobian(e, deformationGradient(e, x));
 }
 
-StvkMembrane::StvkMembrane(const ClothModel& model) : m_elements(buildMembraneElements(model)) {
+StvkMembrane::StvkMembrane(const model::ClothModel& model) : m_elements(buildMembraneElements(model)) {
   std::vector<std::array<int, 3>> stencils;
   stencils.reserve(m_elements.size());
   for (const auto& e : m_elements) stencils.push_back(e.v);

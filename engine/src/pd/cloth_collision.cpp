@@ -45,7 +45,7 @@ std::uint64_t pairKey(int vertex, int triangle, int triangleCount) {
 
 ClothContacts::ClothContacts(const Eigen::MatrixX3i& triangles, int vertexCount,
                              const std::vector<std::pair<int, int>>& stitches, std::vector<int> dofOfVertex,
-                             const ClothContactOptions& options, const std::vector<newton::EdgeStitch>& edgeStitches)
+                             const ClothContactOptions& options, const std::vector<model::EdgeStitch>& edgeStitches)
     : m_triangles(triangles), m_dofOfVertex(std::move(dofOfVertex)), m_options(options) {
   m_canonical.resize(vertexCount);
   std::iota(m_canonical.begin(), m_canonical.end(), 0);

@@ -16,7 +16,7 @@ std::vector<int> partitionTriangles(const Eigen::MatrixX3i& triangles, int verte
 
 std::vector<int> partitionTriangles(const Eigen::MatrixX3i& triangles, int vertexCount,
                                     const std::vector<std::pair<int, int>>& stitches,
-                                    const std::vector<newton::EdgeStitch>& edgeStitches, int domains,
+                                    const std::vector<model::EdgeStitch>& edgeStitches, int domains,
                                     unsigned seed) {
   const int nt = static_cast<int>(triangles.rows());
   std::vector<int> part(nt, 0);
@@ -48,7 +48,7 @@ std::vector<int> partitionTriangles(const Eigen::MatrixX3i& triangles, int verte
     for (int t = 0; t < nt; ++t)
       for (int k = 0; k < 3; ++k) someTriangle[triangles(t, k)] = t;
     for (const auto& [a, b] : stitches) link(someTriangle[a], someTriangle[b]);
-    for (const newton::EdgeStitch& e : edgeStitches) {
+    for (const model::EdgeStitch& e : edgeStitches) {
       const int tv = someTriangle[e.vertex];
       const auto key = std::make_pair(std::min(e.a, e.b), std::max(e.a, e.b));
       const auto first = firstOnEdge.find(key);

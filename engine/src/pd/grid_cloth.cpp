@@ -4,8 +4,8 @@
 
 namespace drape::pd {
 
-newton::ClothModel makeGridCloth(const GridClothOptions& o) {
-  newton::ClothModel m;
+model::ClothModel makeGridCloth(const GridClothOptions& o) {
+  model::ClothModel m;
   const int nx = std::max(o.nx, 2), ny = std::max(o.ny, 2);
   const int nv = nx * ny;
   m.restCoords.resize(nv, 2);

@@ -31,7 +31,7 @@ double quantised(double k) { return std::exp2(2.0 * std::round(0.5 * std::log2(k
 }  // namespace
 
 struct PdPreconditioner::Impl {
-  newton::ClothModel model;
+  model::ClothModel model;
   double stitchStiffness = 0.0;
   double pinStiffness = 0.0;
   double alpha = 0.0, betaStretch = 0.0, betaBend = 0.0;
@@ -74,9 +74,9 @@ bool PdPreconditioner::Impl::build(double h, double scale) {
   global.reset();
   system.reset();
   factorUsed = false;
-  newton::ClothModel scaled = model;
+  model::ClothModel scaled = model;
   const double stretch = scale * (1.0 + betaStretch / h), bend = scale * (1.0 + betaBend / h);
-  for (newton::TriangleFabric& f : scaled.fabrics) {
+  for (model::TriangleFabric& f : scaled.fabrics) {
     f.stretchWarp *= stretch;
     f.stretchWeft *= stretch;
     f.shear *= stretch;
@@ -102,7 +102,7 @@ bool PdPreconditioner::Impl::build(double h, double scale) {
   return global->ok();
 }
 
-PdPreconditioner::PdPreconditioner(const newton::ClothModel& model, double stitchStiffness, double pinStiffness,
+PdPreconditioner::PdPreconditioner(const model::ClothModel& model, double stitchStiffness, double pinStiffness,
                                    double alpha, double betaStretch, double betaBend, int domains,
                                    GlobalSolverKind kind)
     : m_impl(std::make_unique<Impl>()) {

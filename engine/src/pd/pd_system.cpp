@@ -32,7 +32,7 @@ Eigen::Vector4d hingeVector(const Eigen::Vector2d& r0, const Eigen::Vector2d& r1
   return Eigen::Vector4d(c03 + c04, c01 + c02, -c01 - c03, -c02 - c04);
 }
 
-PdSystem::PdSystem(const newton::ClothModel& model, const PreviewSettings& settings)
+PdSystem::PdSystem(const model::ClothModel& model, const PreviewSettings& settings)
     : m_h(settings.timeStep), m_triangles(model.triangles), m_gravity(model.gravity), m_warp(settings.warpLimits),
       m_weft(settings.weftLimits), m_shearLimit(settings.shearLimit),
       m_stretchHoldsShear(settings.shearModel == ShearModelKind::Stretch) {
@@ -52,7 +52,7 @@ PdSystem::PdSystem(const newton::ClothModel& model, const PreviewSettings& setti
         throw InputError("cloth model: triangle " + std::to_string(t) + ": vertex " +
                          std::to_string(model.triangles(t, k)) + " out of range (" + std::to_string(nv) +
                          " vertices)");
-  newton::validateStitches(model);
+  model::validateStitches(model);
   if (!model.pinTargets.empty() && model.pinTargets.size() != model.pinned.size())
     throw InputError("cloth model: " + std::to_string(model.pinTargets.size()) + " pin targets for " +
                      std::to_string(model.pinned.size()) + " pins");
@@ -169,7 +169,7 @@ PdSystem::PdSystem(const newton::ClothModel& model, const PreviewSettings& setti
   }
   // Edge stitches (pd-dd section 4.4): constraint A = [1, -(1 - t), -t] on (v, a, b), q = w A^T A. Owned by a
   // triangle of the edge, so that only v is shared with another domain when the seam crosses domains.
-  for (const newton::EdgeStitch& e : model.edgeStitches) {
+  for (const model::EdgeStitch& e : model.edgeStitches) {
     Stencil st;
     st.size = 3;
     const auto it = edgeTriangles.find({std::min(e.a, e.b), std::max(e.a, e.b)});

@@ -51,10 +51,10 @@ void addWork(const PreviewReport& earlier, PreviewReport& report) {
 }
 
 // Largest distance between the two sides of a stitch (vertex pairs and vertex-to-edge points), metres.
-double largestStitchGap(const newton::ClothModel& model, const Eigen::MatrixX3d& x) {
+double largestStitchGap(const model::ClothModel& model, const Eigen::MatrixX3d& x) {
   double gap = 0.0;
   for (const auto& [a, b] : model.stitches) gap = std::max(gap, (x.row(a) - x.row(b)).norm());
-  for (const newton::EdgeStitch& e : model.edgeStitches)
+  for (const model::EdgeStitch& e : model.edgeStitches)
     gap = std::max(gap, (x.row(e.vertex) - (1.0 - e.t) * x.row(e.a) - e.t * x.row(e.b)).norm());
   return gap;
 }
@@ -83,7 +83,7 @@ struct PreviewSolver::Impl {
     std::unique_ptr<LocalStep> local;
     std::unique_ptr<ContactFactor> contactFactor;  // settings.contactSolve == Factor, built on first contact
   };
-  newton::ClothModel model;
+  model::ClothModel model;
   std::vector<Level> levels;
   int level = 0;
   int convergedInARow = 0;  // steps converged at the current level since it was entered
@@ -134,7 +134,7 @@ struct PreviewSolver::Impl {
   void resolveClothContacts(const Eigen::MatrixX3d& start, PreviewReport& rep);
 };
 
-PreviewSolver::PreviewSolver(const newton::ClothModel& model, const PreviewSettings& settings,
+PreviewSolver::PreviewSolver(const model::ClothModel& model, const PreviewSettings& settings,
                              std::shared_ptr<const collision::AvatarCollider> collider)
     : m_impl(std::make_unique<Impl>()) {
   Impl& im = *m_impl;

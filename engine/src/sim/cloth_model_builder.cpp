@@ -8,8 +8,8 @@
 namespace drape {
 namespace {
 
-newton::TriangleFabric toTriangleFabric(const Fabric& f) {
-  newton::TriangleFabric t;
+model::TriangleFabric toTriangleFabric(const Fabric& f) {
+  model::TriangleFabric t;
   t.stretchWarp = f.stretchWarp;
   t.stretchWeft = f.stretchWeft;
   t.shear = f.shear;
@@ -21,12 +21,12 @@ newton::TriangleFabric toTriangleFabric(const Fabric& f) {
 
 }  // namespace
 
-newton::ClothModel buildClothModel(const Scene& scene, const Garment& garment, const std::vector<int>& pinned) {
-  newton::ClothModel model;
+model::ClothModel buildClothModel(const Scene& scene, const Garment& garment, const std::vector<int>& pinned) {
+  model::ClothModel model;
   model.restCoords = garment.rest;
   model.triangles = garment.triangles;
   // One fabric entry per panel, expanded per triangle only when panels differ.
-  std::vector<newton::TriangleFabric> perPanel;
+  std::vector<model::TriangleFabric> perPanel;
   bool uniform = true;
   for (const auto& name : garment.panelNames) {
     perPanel.push_back(toTriangleFabric(scene.fabricOfPanel(name)));

@@ -1,14 +1,14 @@
 #pragma once
 // Scene + garment -> the solvers' ClothModel and settings. Private to the engine (and its benchmarks).
 #include "drape/garment/garment.h"
-#include "drape/newton/cloth_model.h"
+#include "drape/model/cloth_model.h"
 #include "drape/newton/newton_solver.h"
 #include "drape/pd/preview_settings.h"
 #include "drape/scene/scene.h"
 
 namespace drape {
 
-newton::ClothModel buildClothModel(const Scene& scene, const Garment& garment, const std::vector<int>& pinned);
+model::ClothModel buildClothModel(const Scene& scene, const Garment& garment, const std::vector<int>& pinned);
 
 // The drape's settings from the scene's solver.* keys, its stretch dissipation beta_s from the fabric's damping.
 newton::NewtonSettings newtonSettingsFrom(const Scene& scene);

@@ -35,7 +35,7 @@ ContactTerms makeContactTerms(const Scene& scene, const Garment& garment,
     setup.frictionMajorizer = scene.settings.flag("contact.friction_majorizer");
   }
   // Non-conforming seams: their edge stitches are excluded from cloth-cloth contact like the vertex pairs.
-  std::vector<newton::EdgeStitch> edgeStitches;
+  std::vector<model::EdgeStitch> edgeStitches;
   edgeStitches.reserve(garment.edgeStitches.size());
   for (const GarmentEdgeStitch& e : garment.edgeStitches) edgeStitches.push_back({e.vertex, e.a, e.b, e.t});
   terms.energies = collision::makeContactEnergies(setup, garment.vertexCount(), garment.triangles, garment.stitchPairs,

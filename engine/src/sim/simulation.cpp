@@ -122,7 +122,7 @@ void Simulation::build(const ResumeState* from) {
   if (runsPreview && quasiNewtonMethod() && (!from || from->stage == "preview")) {
     startQuasiNewtonPreview(from);
   } else if (from && from->stage == "preview" && runsPreview) {
-    newton::ClothModel model = m_solver->model;
+    model::ClothModel model = m_solver->model;
     for (int v = 0; v < m_garment.vertexCount(); ++v) {
       model.positions.segment<3>(3 * v) = from->positions.row(v).transpose();
     }
@@ -207,7 +207,7 @@ bool Simulation::startAssembly() {
   } catch (const InputError&) {
     return false;  // the pattern does not mesh this coarsely: the preview sews the scene's own mesh
   }
-  const newton::ClothModel model = buildClothModel(coarse, assembly->garment, resolvePins(coarse, assembly->garment));
+  const model::ClothModel model = buildClothModel(coarse, assembly->garment, resolvePins(coarse, assembly->garment));
   assembly->masses = newton::lumpedVertexMasses(model);
   assembly->toGarment = garmentTransfer(assembly->garment, m_garment);
   assembly->preview = std::make_unique<pd::PreviewSolver>(model, previewSettings(), m_solver->collider);
@@ -246,7 +246,7 @@ void Simulation::finishAssembly() {
     startDrape(x, start);
     return;
   }
-  newton::ClothModel model = m_solver->model;
+  model::ClothModel model = m_solver->model;
   model.velocities.resize(3 * m_garment.vertexCount());
   for (int i = 0; i < m_garment.vertexCount(); ++i) {
     model.positions.segment<3>(3 * i) = x.row(i).transpose();
@@ -259,7 +259,7 @@ void Simulation::finishAssembly() {
 }
 
 void Simulation::startDrape(const Eigen::MatrixX3d& positions, double time) {
-  newton::ClothModel model = m_solver->model;
+  model::ClothModel model = m_solver->model;
   m_solver->preview.reset();
   m_solver->previewPositions = positions;
   m_solver->previewTime = time;

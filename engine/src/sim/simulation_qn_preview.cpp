@@ -27,7 +27,7 @@ void Simulation::startQuasiNewtonPreview(const ResumeState* from) {
   m_atRest = false;
   m_restSince = -1.0;
   const Settings& s = m_scene.settings;
-  newton::ClothModel model = m_solver->model;
+  model::ClothModel model = m_solver->model;
   newton::NewtonSettings settings = newtonSettingsFrom(m_scene);
   settings.hMax = s.number("solver.preview.qn_time_step");
   // The relaxation (velocities zeroed, stiffness ramped) as the drape's, its first steps a quarter of the preview's

@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "drape/collision/avatar_collider.h"
-#include "drape/newton/cloth_model.h"
+#include "drape/model/cloth_model.h"
 #include "drape/newton/newton_solver.h"
 #include "drape/pd/pd_preconditioner.h"
 #include "drape/pd/preview_solver.h"
@@ -14,7 +14,7 @@
 namespace drape {
 
 struct Simulation::Solver {
-  newton::ClothModel model;
+  model::ClothModel model;
   std::shared_ptr<const collision::AvatarCollider> collider;
   std::unique_ptr<pd::PreviewSolver> preview;  // while the stage is "preview"
   std::unique_ptr<newton::NewtonSolver> newton;  // once the stage is "drape", and for the quasi-Newton preview

@@ -11,7 +11,7 @@
 #include "drape/collision/avatar_collider.h"
 #include "drape/collision/avatar_contact.h"
 #include "drape/collision/friction.h"
-#include "drape/newton/cloth_model.h"
+#include "drape/model/cloth_model.h"
 #include "drape/newton/energy.h"
 
 namespace drape::collision {
@@ -36,6 +36,6 @@ struct ContactSetup {
 // The friction energy, when created, points at the contact energies in the same list: keep the list together.
 std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(
     const ContactSetup& setup, int vertexCount, const Eigen::MatrixX3i& triangles,
-    const std::vector<std::pair<int, int>>& stitches, const std::vector<newton::EdgeStitch>& edgeStitches = {});
+    const std::vector<std::pair<int, int>>& stitches, const std::vector<model::EdgeStitch>& edgeStitches = {});
 
 }  // namespace drape::collision

@@ -13,7 +13,7 @@
 #include "drape/collision/avatar_contact.h"
 #include "drape/collision/contact_stencil.h"
 #include "drape/collision/self_proximity.h"
-#include "drape/newton/cloth_model.h"
+#include "drape/model/cloth_model.h"
 #include "drape/newton/energy.h"
 
 namespace drape::collision {
@@ -26,7 +26,7 @@ namespace drape::collision {
 // into one group, so a seam folded onto itself would never collide. With the nearer endpoint each coarse-side
 // vertex gathers the fine-side vertices within half an edge of it, and groups never chain along the seam.
 std::vector<std::pair<int, int>> contactMergedVertices(const std::vector<std::pair<int, int>>& stitchPairs,
-                                                       const std::vector<newton::EdgeStitch>& edgeStitches);
+                                                       const std::vector<model::EdgeStitch>& edgeStitches);
 
 class SelfContactEnergy : public newton::Energy {
  public:

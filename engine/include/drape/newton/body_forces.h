@@ -1,13 +1,13 @@
 // Gravity and air drag (newton-drape-pizana eq. 5) on lumped vertex masses.
 #pragma once
 
-#include "drape/newton/cloth_model.h"
+#include "drape/model/cloth_model.h"
 #include "drape/newton/energy.h"
 
 namespace drape::newton {
 
 // Lumped masses, kg per vertex: a third of density * rest area of every incident triangle. Size |V|.
-Eigen::VectorXd lumpedVertexMasses(const ClothModel& model);
+Eigen::VectorXd lumpedVertexMasses(const model::ClothModel& model);
 
 // E = -sum m_i g . x_i (joules).
 class Gravity : public Energy {

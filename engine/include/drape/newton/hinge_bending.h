@@ -16,7 +16,7 @@
 #include <array>
 #include <vector>
 
-#include "drape/newton/cloth_model.h"
+#include "drape/model/cloth_model.h"
 #include "drape/newton/energy.h"
 #include "drape/newton/recorded_gradient.h"
 #include "drape/newton/stencil_set.h"
@@ -39,7 +39,7 @@ using HingeCoords = Eigen::Matrix<double, 12, 1>;
 HingeCoords gatherHinge(const Hinge& hinge, const Eigen::VectorXd& x);
 
 // Interior edges shared by exactly two triangles of the model, with their stiffness (0-stiffness ones dropped).
-std::vector<Hinge> buildHinges(const ClothModel& model);
+std::vector<Hinge> buildHinges(const model::ClothModel& model);
 
 // Signed dihedral angle of a hinge (radians) and its gradient w.r.t. the 12 coordinates (closed form).
 double hingeAngle(const Hinge& hinge, const Eigen::VectorXd& x);
@@ -72,7 +72,7 @@ class BendingDissipation;
 
 class HingeBending : public Energy {
  public:
-  explicit HingeBending(const ClothModel& model);
+  explicit HingeBending(const model::ClothModel& model);
   std::string_view name() const override { return "bending"; }
   void beginStep(const StepContext& ctx) override;
   double value(const Eigen::VectorXd& x) const override;

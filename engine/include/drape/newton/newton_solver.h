@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "drape/newton/cloth_model.h"
+#include "drape/model/cloth_model.h"
 #include "drape/newton/energy.h"
 #include "drape/newton/linear_solve.h"
-#include "drape/newton/step_preconditioner.h"
+#include "drape/model/step_preconditioner.h"
 
 namespace drape::newton {
 
@@ -113,7 +113,7 @@ struct NewtonSettings {
 };
 
 // The quasi-Newton inner solve of a step (the preview; quasi_newton_step.cpp): L-BFGS on the same incremental
-// potential as Newton's, its initial Hessian a StepPreconditioner (Liu, Bouaziz and Kavan 2017), with a backtracking
+// potential as Newton's, its initial Hessian a model::StepPreconditioner (Liu, Bouaziz and Kavan 2017), with a backtracking
 // Armijo line search. A step ends once the momentum residual is below tau_n or after maxIterations iterations, where
 // it is kept as it is (the preview solves inexactly).
 struct QuasiNewtonSettings {
@@ -162,7 +162,7 @@ class NewtonSolver {
  public:
   // Builds only the energies the model needs; extra energies (contact, friction) are appended and owned.
   // Throws std::invalid_argument on inconsistent sizes or degenerate rest triangles.
-  NewtonSolver(ClothModel model, NewtonSettings settings, std::vector<std::unique_ptr<Energy>> extra = {});
+  NewtonSolver(model::ClothModel model, NewtonSettings settings, std::vector<std::unique_ptr<Energy>> extra = {});
   ~NewtonSolver();
 
   // Advances one step (with internal time-split retries). Never throws for numerical trouble: a failure
@@ -176,7 +176,7 @@ class NewtonSolver {
   // From the next step on, solves every step by L-BFGS with `preconditioner` as its initial Hessian instead of by
   // Newton and PCG (the preview on the drape's own model); null: Newton. A step that the quasi-Newton solve leaves
   // above tau_n after its iterations is kept (MaxIterations is not a failure there).
-  void setQuasiNewton(std::shared_ptr<StepPreconditioner> preconditioner, QuasiNewtonSettings settings = {});
+  void setQuasiNewton(std::shared_ptr<model::StepPreconditioner> preconditioner, QuasiNewtonSettings settings = {});
   bool quasiNewton() const { return m_quasiNewton != nullptr; }
   // The next step's size (s), growing from there by the time-splitting rule.
   void restartStepSize(double h) {
@@ -219,7 +219,7 @@ class NewtonSolver {
   void residual(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double h, Eigen::VectorXd& b) const;
   void momentumResidual(const Eigen::VectorXd& g, const Eigen::VectorXd& v, double h, Eigen::VectorXd& b) const;
 
-  ClothModel m_model;
+  model::ClothModel m_model;
   NewtonSettings m_settings;
   std::vector<std::unique_ptr<Energy>> m_energies;
   PinSprings* m_drag = nullptr;  // owned by m_energies
@@ -275,7 +275,7 @@ class NewtonSolver {
   bool m_coupledStale = true;
   bool m_useCoupled = false;
   std::atomic<bool> m_cancel{false};
-  std::shared_ptr<StepPreconditioner> m_quasiNewton;  // setQuasiNewton
+  std::shared_ptr<model::StepPreconditioner> m_quasiNewton;  // setQuasiNewton
   QuasiNewtonSettings m_qnSettings;
   BlockMatrix m_freshHessian;  // freshVertexStiffness's diagonal-pattern matrix
 };

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "drape/newton/cloth_model.h"
+#include "drape/model/cloth_model.h"
 #include "drape/newton/energy.h"
 
 namespace drape::newton {
@@ -18,7 +18,7 @@ namespace drape::newton {
 // and b. Both are zero-length springs of the same stiffness.
 class StitchSprings : public Energy {
  public:
-  StitchSprings(std::vector<std::pair<int, int>> pairs, double stiffness, const std::vector<EdgeStitch>& edges = {});
+  StitchSprings(std::vector<std::pair<int, int>> pairs, double stiffness, const std::vector<model::EdgeStitch>& edges = {});
   std::string_view name() const override { return "stitches"; }
   double value(const Eigen::VectorXd& x) const override;
   void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;

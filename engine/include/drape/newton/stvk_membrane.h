@@ -7,7 +7,7 @@
 #include <array>
 #include <vector>
 
-#include "drape/newton/cloth_model.h"
+#include "drape/model/cloth_model.h"
 #include "drape/newton/energy.h"
 #include "drape/newton/recorded_gradient.h"
 #include "drape/newton/stencil_set.h"
@@ -25,7 +25,7 @@ struct MembraneElement {
 };
 
 // Rest data for every triangle. Throws std::invalid_argument on a degenerate rest triangle.
-std::vector<MembraneElement> buildMembraneElements(const ClothModel& model);
+std::vector<MembraneElement> buildMembraneElements(const model::ClothModel& model);
 
 // Deformation gradient F (3 x 2: the rest frame's warp and weft directions mapped to 3D) of element e at x.
 Eigen::Matrix<double, 3, 2> deformationGradient(const MembraneElement& e, const Eigen::VectorXd& x);
@@ -37,7 +37,7 @@ Eigen::Matrix<double, 3, 9> greenStrainJacobian(const MembraneElement& e, const 
 
 class StvkMembrane : public Energy {
  public:
-  explicit StvkMembrane(const ClothModel& model);
+  explicit StvkMembrane(const model::ClothModel& model);
   std::string_view name() const override { return "membrane"; }
   void beginStep(const StepContext& ctx) override;
   double value(const Eigen::VectorXd& x) const override;

@@ -35,7 +35,7 @@
 #include <vector>
 
 #include "drape/collision/bvh.h"
-#include "drape/newton/cloth_model.h"
+#include "drape/model/cloth_model.h"
 #include "drape/pd/cloth_ccd_guard.h"
 #include "drape/pd/contact_solve.h"
 
@@ -70,7 +70,7 @@ class ClothContacts {
   // (collision::contactMergedVertices).
   ClothContacts(const Eigen::MatrixX3i& triangles, int vertexCount, const std::vector<std::pair<int, int>>& stitches,
                 std::vector<int> dofOfVertex, const ClothContactOptions& options,
-                const std::vector<newton::EdgeStitch>& edgeStitches = {});
+                const std::vector<model::EdgeStitch>& edgeStitches = {});
   // Representative of v's merged group (stitched vertices share one; v itself when not stitched).
   int canonical(int v) const { return m_canonical[v]; }
   ~ClothContacts();

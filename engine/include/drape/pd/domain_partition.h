@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "drape/newton/cloth_model.h"
+#include "drape/model/cloth_model.h"
 
 namespace drape::pd {
 
@@ -18,7 +18,7 @@ class PdSystem;
 // edge, with a triangle of a and one of b). domains is clamped to [1, |T|].
 std::vector<int> partitionTriangles(const Eigen::MatrixX3i& triangles, int vertexCount,
                                     const std::vector<std::pair<int, int>>& stitches,
-                                    const std::vector<newton::EdgeStitch>& edgeStitches, int domains,
+                                    const std::vector<model::EdgeStitch>& edgeStitches, int domains,
                                     unsigned seed = 1);
 // The same without edge stitches.
 std::vector<int> partitionTriangles(const Eigen::MatrixX3i& triangles, int vertexCount,

@@ -1,7 +1,7 @@
 #pragma once
 // A rectangular cloth for tests and benchmarks (the paper's hanging tablecloth, Fig. 12/13): a regular grid in
 // the material frame, placed vertically (x right, y up) or horizontally (x, z) in world space.
-#include "drape/newton/cloth_model.h"
+#include "drape/model/cloth_model.h"
 
 namespace drape::pd {
 
@@ -16,6 +16,6 @@ struct GridClothOptions {
 };
 
 // Vertex (i, j) has index j * nx + i and rest coords (i width / (nx - 1), j height / (ny - 1)).
-newton::ClothModel makeGridCloth(const GridClothOptions& options);
+model::ClothModel makeGridCloth(const GridClothOptions& options);
 
 }  // namespace drape::pd

@@ -12,18 +12,18 @@
 #include <memory>
 #include <vector>
 
-#include "drape/newton/cloth_model.h"
-#include "drape/newton/step_preconditioner.h"
+#include "drape/model/cloth_model.h"
+#include "drape/model/step_preconditioner.h"
 #include "drape/pd/preview_settings.h"
 
 namespace drape::pd {
 
-class PdPreconditioner final : public newton::StepPreconditioner {
+class PdPreconditioner final : public model::StepPreconditioner {
  public:
   // stitchStiffness, pinStiffness: the drape's (N/m); alpha (1/s), betaStretch, betaBend (s): its air drag and
   // dissipations (newton_solver.h). domains: METIS domains of the decomposed solve (0 = the number
   // of threads); kind: decomposed or monolithic. Partitions once; factorises on the first prepare.
-  PdPreconditioner(const newton::ClothModel& model, double stitchStiffness, double pinStiffness, double alpha,
+  PdPreconditioner(const model::ClothModel& model, double stitchStiffness, double pinStiffness, double alpha,
                    double betaStretch, double betaBend, int domains = 0,
                    GlobalSolverKind kind = GlobalSolverKind::DomainDecomposed);
   ~PdPreconditioner() override;

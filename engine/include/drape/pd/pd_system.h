@@ -8,7 +8,7 @@
 #include <array>
 #include <vector>
 
-#include "drape/newton/cloth_model.h"
+#include "drape/model/cloth_model.h"
 #include "drape/pd/preview_settings.h"
 #include "drape/pd/strain_projection.h"
 
@@ -33,7 +33,7 @@ Eigen::Vector4d hingeVector(const Eigen::Vector2d& r0, const Eigen::Vector2d& r1
 class PdSystem {
  public:
   // Validates sizes (throws InputError naming the element) and builds all constraints. h: time step, s.
-  PdSystem(const newton::ClothModel& model, const PreviewSettings& settings);
+  PdSystem(const model::ClothModel& model, const PreviewSettings& settings);
 
   int vertexCount() const { return m_vertexCount; }
   int freeCount() const { return static_cast<int>(m_freeVertices.size()); }

@@ -10,7 +10,7 @@
 #include <memory>
 #include <vector>
 
-#include "drape/newton/cloth_model.h"
+#include "drape/model/cloth_model.h"
 #include "drape/pd/preview_settings.h"
 
 namespace drape::collision {
@@ -51,7 +51,7 @@ class PreviewSolver {
  public:
   // Validates the model (throws InputError naming the element), partitions, and prefactorises. collider: optional
   // avatar, shared with other solvers; null = no avatar contact.
-  PreviewSolver(const newton::ClothModel& model, const PreviewSettings& settings,
+  PreviewSolver(const model::ClothModel& model, const PreviewSettings& settings,
                 std::shared_ptr<const collision::AvatarCollider> collider = nullptr);
   ~PreviewSolver();
   PreviewSolver(const PreviewSolver&) = delete;

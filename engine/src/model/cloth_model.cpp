@@ -1,11 +1,11 @@
-#include "drape/newton/cloth_model.h"
+#include "drape/model/cloth_model.h"
 
 #include <cmath>
 #include <sstream>
 
 #include "drape/core/input_error.h"
 
-namespace drape::newton {
+namespace drape::model {
 
 void validateStitches(const ClothModel& model, const std::string& context) {
   const int nv = model.numVertices();
@@ -37,4 +37,4 @@ void validateStitches(const ClothModel& model, const std::string& context) {
   }
 }
 
-}  // namespace drape::newton
+}  // namespace drape::model

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-namespace drape::newton {
+namespace drape::model {
 
 // Fabric parameters of one triangle (see drape::Fabric for typical values).
 struct TriangleFabric {
@@ -56,4 +56,4 @@ struct ClothModel {
 // e.g. "cloth model: edge stitch 4: t = 1.5 outside [0, 1]". context prefixes the message ("cloth model").
 void validateStitches(const ClothModel& model, const std::string& context = "cloth model");
 
-}  // namespace drape::newton
+}  // namespace drape::model

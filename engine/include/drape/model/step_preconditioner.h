@@ -5,7 +5,7 @@
 // stiffness of the terms that change within a run (contact, friction, a dragged vertex) per vertex.
 #include <Eigen/Core>
 
-namespace drape::newton {
+namespace drape::model {
 
 class StepPreconditioner {
  public:
@@ -23,4 +23,4 @@ class StepPreconditioner {
   virtual int factorisations() const = 0;
 };
 
-}  // namespace drape::newton
+}  // namespace drape::model
