@@ -211,7 +211,8 @@ int runBatch(const CliOptions& options, std::ostream& out) {
   if (options.slurm) return submitBatch(options, manifest, pending, outDir, out);
   prepareMannequins(manifest, pending, outDir, out);
   const size_t total = mine.size();
-  const int cores = availableCores();
+  // --threads caps the cores the batch shares among its jobs.
+  const int cores = options.threads > 0 ? std::min(options.threads, availableCores()) : availableCores();
   const size_t slots = options.jobs > 0 ? static_cast<size_t>(options.jobs) : static_cast<size_t>(cores);
   // The cores are shared among the jobs that run at once, so that N jobs do not each start a thread per core.
   const int threads = std::max(1, cores / static_cast<int>(std::max<size_t>(1, std::min(slots, pending.size()))));
