@@ -125,6 +125,8 @@ SlurmSubmission submitToSlurm(const SlurmRequest& request) {
   submission.arrayJob = sbatch(
       program, {"--parsable", "--output=" + (folder / "task-%A_%a.log").string(), submission.arrayScript.string()},
       folder);
+  // Recorded before the gathering job is submitted, so that its array is seen as queued even if that submission fails.
+  writeFileAtomically(folder / "submitted.txt", submission.arrayJob + "\n");
   submission.gatherJob = sbatch(program,
                                 {"--parsable", "--output=" + (folder / "gather-%j.log").string(),
                                  "--dependency=afterany:" + submission.arrayJob, submission.gatherScript.string()},
