@@ -153,6 +153,11 @@ int writeSummaries(const BatchManifest& manifest, const std::vector<BatchJobFile
 int submitBatch(const CliOptions& options, BatchManifest& manifest, const std::vector<size_t>& pending,
                 const fs::path& outDir, std::ostream& out) {
   const size_t total = manifest.jobs.size();
+  if (pending.empty()) {
+    out << "batch " << manifest.file.string() << ": all " << total
+        << " jobs have finished; nothing to submit (--gather writes the summary)\n";
+    return 0;
+  }
   const int shardCount =
       options.tasks > 0 ? options.tasks : static_cast<int>(std::min<size_t>(total, size_t(kMaxArrayTasks)));
   SlurmRequest request;
@@ -167,11 +172,6 @@ int submitBatch(const CliOptions& options, BatchManifest& manifest, const std::v
   request.partition = options.partition;
   request.timeLimit = options.timeLimit;
   request.cpusPerTask = options.cpusPerTask;
-  if (pending.empty()) {
-    out << "batch " << manifest.file.string() << ": all " << total
-        << " jobs have finished; nothing to submit (--gather writes the summary)\n";
-    return 0;
-  }
   prepareMannequins(manifest, pending, outDir, out);
   const SlurmSubmission submission = submitToSlurm(request);
   out << "batch " << manifest.file.string() << ": " << pending.size() << " of " << total

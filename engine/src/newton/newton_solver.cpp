@@ -154,13 +154,13 @@ double NewtonSolver::totalEnergy(const Eigen::VectorXd& x) const {
 double NewtonSolver::kineticEnergyPercentile() const {
   std::vector<double> ke(m_mass.size());
   for (size_t i = 0; i < ke.size(); ++i) ke[i] = 0.5 * m_mass(i) * m_v.segment<3>(3 * i).squaredNorm();
-  return percentile(std::move(ke), m_settings.kineticPercentile);
+  return percentile(std::move(ke), m_settings.restPercentile);
 }
 
 double NewtonSolver::speedPercentile() const {
   std::vector<double> speed(m_mass.size());
   for (size_t i = 0; i < speed.size(); ++i) speed[i] = m_mass(i) > 0.0 ? m_v.segment<3>(3 * i).norm() : 0.0;
-  return percentile(std::move(speed), m_settings.kineticPercentile);
+  return percentile(std::move(speed), m_settings.restPercentile);
 }
 
 bool NewtonSolver::residualBelowRest(const Eigen::VectorXd& b) const {
@@ -168,7 +168,7 @@ bool NewtonSolver::residualBelowRest(const Eigen::VectorXd& b) const {
   // The velocity error |b_i| / m_i of vertex i.
   std::vector<double> error(m_mass.size());
   for (size_t i = 0; i < error.size(); ++i) error[i] = m_mass(i) > 0.0 ? b.segment<3>(3 * i).norm() / m_mass(i) : 0.0;
-  return percentile(std::move(error), m_settings.kineticPercentile) < m_settings.restSpeed;
+  return percentile(std::move(error), m_settings.restPercentile) < m_settings.restSpeed;
 }
 
 // Right-hand side of eq. 4: b = M (v_n - v) - h dE/dx(x); its norm is the Newton residual.

@@ -50,7 +50,7 @@ struct NewtonSettings {
   // so an energy threshold took a light or finely meshed garment for at rest while it still moved.
   double restSpeed = 0.02;              // m/s; 0: never at rest
   double earlyStopWindow = 0.1;         // s
-  double kineticPercentile = 0.99;      // the percentile of both the speeds and the reported kinetic energies
+  double restPercentile = 0.99;         // the percentile of the speeds, velocity errors and reported kinetic energies
   // Rest-aware convergence (not in the paper): near rest, an absolute tau_n lets a step end with a momentum residual
   // r whose velocity error (r_i / m_i per vertex) is larger than the motion the early stop waits to die out, and the
   // accepted errors keep the garment creeping (the A-line skirt from the preview's state, for seconds at tau_n 1e-3).
