@@ -7,8 +7,12 @@
 
 namespace drape::app {
 
+// The settings by group (the table's order), each group under a heading "[name] what it decides".
 int runListSettings(std::ostream& out) {
-  for (const auto& spec : Settings::specs()) {
+  for (size_t i = 0; i < Settings::specs().size(); ++i) {
+    const SettingSpec& spec = Settings::specs()[i];
+    if (i == 0 || Settings::specs()[i - 1].group != spec.group)
+      out << (i ? "\n" : "") << "[" << settingGroupName(spec.group) << "] " << settingGroupTitle(spec.group) << "\n";
     out << spec.key << " = " << (spec.defaultValue.empty() ? "(unset)" : spec.defaultValue);
     if (!spec.unit.empty()) out << " [" << spec.unit << "]";
     const bool numeric = spec.type == SettingType::Number || spec.type == SettingType::Integer;

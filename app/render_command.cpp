@@ -27,7 +27,7 @@ namespace {
 // (simulatedExitStatus: its quality verdict, or diverged), 0 for the placed garment.
 Snapshot stageSnapshot(Scene scene, const std::string& from, std::ostream& out, int& exitStatus) {
   exitStatus = 0;
-  if (scene.settings.text("solver.stage") == "none") {
+  if (scene.settings.stagePlan() == StagePlan::None) {
     Diagnostics diagnostics;
     const Garment garment = buildSceneGarment(scene, &diagnostics);
     resolvePins(scene, garment);  // validates the pins

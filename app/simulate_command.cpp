@@ -21,7 +21,7 @@ namespace drape::app {
 namespace {
 
 nlohmann::json stepRecord(const StepReport& r) {
-  nlohmann::json j = {{"stage", r.stage},
+  nlohmann::json j = {{"stage", stageName(r.stage)},
                       {"time", r.time},
                       {"h", r.h},
                       {"status", toString(r.status)},
@@ -42,14 +42,14 @@ nlohmann::json stepRecord(const StepReport& r) {
     j["preconditioner_time_s"] = r.assemblyTime;
     j["gradient_time_s"] = r.gradientTime;
     j["direction_time_s"] = r.linearSolveTime;
-  } else if (r.stage == "preview") {
+  } else if (r.stage == Stage::Preview) {
     j["domains"] = r.domains;
     j["sewn"] = r.sewn;
     j["assembly"] = r.assembly;
     j["collision_time_s"] = r.collisionTime;
     j["local_time_s"] = r.localTime;
     j["global_time_s"] = r.globalTime;
-  } else if (r.stage == "drape") {
+  } else if (r.stage == Stage::Drape) {
     j["assembly_time_s"] = r.assemblyTime;
     j["gradient_time_s"] = r.gradientTime;
     j["linear_solve_time_s"] = r.linearSolveTime;
@@ -80,7 +80,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
   std::vector<std::string> warnings;
   int exitStatus = 0;
 
-  if (stage == "none") {
+  if (scene.settings.stagePlan() == StagePlan::None) {
     Diagnostics diagnostics;
     const Garment garment = buildSceneGarment(scene, &diagnostics);
     const auto pinned = resolvePins(scene, garment);
@@ -113,7 +113,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
     out << "\n";
     nlohmann::json perStep = nlohmann::json::array();
     int domains = 0;
-    std::string lastStage = simulation.stage();
+    Stage lastStage = simulation.stage();
     std::string lastFailure;  // simulation.previewFailure() as last printed
     int restartsSaid = 0;     // simulation.previewRestartReasons() printed
     std::string status;       // Diverged or Cancelled from a step, else why the run finished
@@ -160,7 +160,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
           std::snprintf(work, sizeof work, "iterations=%d  cg=%d", last.iterations, last.cgIterations);
         char line[280];
         std::snprintf(line, sizeof line, "  %s t=%.3f s  h=%.2e  %s  residual=%.2e  KE=%.2e  contacts=%d  wall=%.1f s%s\n",
-                      last.stage.c_str(), last.time, last.h, work, last.residual, last.kineticEnergy, last.contacts,
+                      stageName(last.stage), last.time, last.h, work, last.residual, last.kineticEnergy, last.contacts,
                       wall, estimate);
         out << line << std::flush;
         nextPrint = last.time + 0.1;

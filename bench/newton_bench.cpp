@@ -45,22 +45,30 @@ int g_reuseSteps = 4;
 // Vertices per coarse aggregate with feature "coarse" on (solver.cg.coarse_aggregate; --coarse-aggregate).
 int g_coarseAggregate = 16;
 
-// The speed-up switches: name, setting key (scene mode), NewtonSettings setter (cloth mode); a switch that is not
-// boolean gives its scene value on / off.
+// The speed-up switches: name, setting key (scene mode; nullptr for an implementation switch, set on
+// Scene::implementation), NewtonSettings setter (cloth mode); a switch that is not boolean gives its scene value
+// on / off.
 struct Feature {
   const char* name;
   const char* key;
   void (*set)(NewtonSettings&, bool on);
   std::string (*sceneValue)(bool on) = [](bool on) { return std::string(on ? "true" : "false"); };
+  void (*setImplementation)(drape::Implementation&, bool on) = nullptr;
 };
+// An implementation switch: the same field in NewtonSettings (cloth mode) and in drape::Implementation (scene mode).
+#define DRAPE_IMPLEMENTATION_SWITCH(name, newtonField, implementationField)                         \
+  Feature {                                                                                         \
+    name, nullptr, [](NewtonSettings& s, bool on) { s.newtonField = on; }, nullptr,                 \
+        [](drape::Implementation& i, bool on) { i.implementationField = on; }                       \
+  }
 const std::vector<Feature>& features() {
   static const std::vector<Feature> list = {
-      {"bending", "solver.newton.closed_form_bending", [](NewtonSettings& s, bool on) { s.closedFormBending = on; }},
-      {"map", "solver.newton.block_map", [](NewtonSettings& s, bool on) { s.cachedBlockMap = on; }},
-      {"parallel", "solver.newton.parallel_assembly", [](NewtonSettings& s, bool on) { s.parallelAssembly = on; }},
-      {"fold", "solver.newton.fold_dissipation", [](NewtonSettings& s, bool on) { s.foldDissipation = on; }},
-      {"reorder", "solver.newton.reorder_dofs", [](NewtonSettings& s, bool on) { s.reorderDofs = on; }},
-      {"fused", "solver.cg.fused_kernels", [](NewtonSettings& s, bool on) { s.linear.fusedKernels = on; }},
+      DRAPE_IMPLEMENTATION_SWITCH("bending", closedFormBending, closedFormBending),
+      DRAPE_IMPLEMENTATION_SWITCH("map", cachedBlockMap, blockMap),
+      DRAPE_IMPLEMENTATION_SWITCH("parallel", parallelAssembly, parallelAssembly),
+      DRAPE_IMPLEMENTATION_SWITCH("fold", foldDissipation, foldDissipation),
+      DRAPE_IMPLEMENTATION_SWITCH("reorder", reorderDofs, reorderDofs),
+      DRAPE_IMPLEMENTATION_SWITCH("fused", linear.fusedKernels, fusedKernels),
       {"warm", "solver.cg.warm_start", [](NewtonSettings& s, bool on) { s.linear.warmStart = on; }},
       {"mixed", "solver.cg.mixed_precision", [](NewtonSettings& s, bool on) { s.linear.mixedPrecision = on; }},
       {"reuse", "solver.newton.hessian_reuse_steps",
@@ -74,7 +82,7 @@ const std::vector<Feature>& features() {
       {"guess", "solver.newton.relaxation_guess", [](NewtonSettings& s, bool on) { s.relaxationGuess = on; }},
       // Friction is a contact term: the cloth mode (no contact) has none to switch.
       {"majorizer", "contact.friction_majorizer", [](NewtonSettings&, bool) {}},
-      {"batch", "solver.newton.batched_gradients", [](NewtonSettings& s, bool on) { s.batchedGradients = on; }},
+      DRAPE_IMPLEMENTATION_SWITCH("batch", batchedGradients, batchedGradients),
       {"lag", "solver.cg.coarse_lagged", [](NewtonSettings& s, bool on) { s.coarseLagged = on; }},
   };
   return list;
@@ -236,9 +244,12 @@ drape::Scene loadBenchScene(const SceneOptions& o, const std::vector<bool>& on) 
   drape::SceneRequest request;
   request.input = o.file;
   request.overrides = o.overrides;
-  for (size_t k = 0; k < on.size(); ++k) request.overrides.emplace_back(features()[k].key, features()[k].sceneValue(on[k]));
+  for (size_t k = 0; k < on.size(); ++k)
+    if (features()[k].key) request.overrides.emplace_back(features()[k].key, features()[k].sceneValue(on[k]));
   request.overrides.emplace_back("solver.max_sim_time", std::to_string(o.simTime));
   drape::Scene scene = drape::loadScene(request);
+  for (size_t k = 0; k < on.size(); ++k)
+    if (features()[k].setImplementation) features()[k].setImplementation(scene.implementation, on[k]);
   if (o.motionStart >= 0.0)
     for (auto& pin : scene.pins)
       if (pin.moving) {

@@ -1,6 +1,7 @@
 # The engine's layering, checked on its sources (a test: cmake -DENGINE_DIR=... -P include_rules.cmake):
 #   engine/         includes no Qt and no OpenGL header (it builds and runs without either);
 #   model/          the cloth model both solvers share: includes only core/ of the engine;
+#   collision/      geometry only (distances, BVHs, CCD, proximity): includes no solver header (newton/, pd/);
 #   pd/             the preview: includes no header of newton/, the drape.
 # A violation prints FILE:LINE: the include and the rule, and fails.
 cmake_minimum_required(VERSION 3.20)
@@ -28,6 +29,8 @@ endfunction()
 check("" "[<\"](Qt[A-Za-z]*/|Q[A-Z][A-Za-z]*>|GL/|GLES[0-9]*/|EGL/|epoxy/)" "engine/ includes no Qt or OpenGL header")
 check("include/drape/model" "\"drape/(avatar|collision|fabric|garment|geometry|io|newton|pattern|pd|scene|sim)/" "model/ includes only core/")
 check("src/model" "\"drape/(avatar|collision|fabric|garment|geometry|io|newton|pattern|pd|scene|sim)/" "model/ includes only core/")
+check("include/drape/collision" "\"drape/(newton|pd|sim)/" "collision/ is geometry only: no solver header")
+check("src/collision" "\"drape/(newton|pd|sim)/" "collision/ is geometry only: no solver header")
 check("include/drape/pd" "\"drape/newton/" "pd/ includes no newton/ header")
 check("src/pd" "\"drape/newton/" "pd/ includes no newton/ header")
 

@@ -1,15 +1,13 @@
 // drape --batch through the executable: a manifest's grid and jobs expand to the expected sorted ids, bad manifests are
 // refused with one line before any job runs, and a small local batch records its one bad job, writes the summary and
 // contact sheet, and on a second run redoes only the jobs without done.json; its shards (--shard I/N) gathered
-// (--gather) give the same summary.
+// (--gather) give the same summary. A batch killed and run again is a slow test (tests/slow/cli_batch_kill_test.cpp),
+// and so is the batch through a real Slurm (tests/slow/cli_batch_slurm_test.cpp).
 #include <gtest/gtest.h>
-#include <signal.h>
 
-#include <chrono>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <thread>
 
 #include "batch_manifests.h"
 
@@ -204,60 +202,6 @@ TEST(CliBatch, LocalBatchRecordsTheBadJobAndARerunRedoesOnlyUnfinishedJobs) {
   EXPECT_TRUE(fs::exists(outDir / "tablecloth__set1" / "done.json"));
   EXPECT_EQ(fs::last_write_time(outDir / "tablecloth__set0" / "done.json"), before0);
   EXPECT_EQ(fs::last_write_time(outDir / "tablecloth__set3" / "done.json"), before3);
-  EXPECT_EQ(json::parse(readWhole(outDir / "summary.json")).size(), 4u);
-}
-
-// The batch killed (SIGKILL to it and its running job) once its first job has finished: the finished drapes stay, and
-// the same command again runs only the others.
-TEST(CliBatch, AKilledBatchKeepsItsFinishedDrapesAndTheRerunRunsOnlyTheRest) {
-  json manifest = tableclothBatch({json::array({"fabric.density=0.1"}), json::array({"fabric.density=0.2"}),
-                                   json::array({"fabric.density=0.3"}), json::array({"fabric.density=0.4"})});
-  // About a second a job: time to kill the batch while its second job runs.
-  manifest["max_sim_time"] = 1.0;
-  manifest["set"] = {"mesh.target_edge_length=0.05", "quality.require_rest=false"};
-  const fs::path file = writeManifest("killed.json", manifest), outDir = batchScratch() / "out_killed";
-  fs::remove_all(outDir);
-  const std::string command = "--batch " + quote(file.string()) + " -o " + quote(outDir.string()) + " --jobs 1";
-  // setsid: the batch leads its own process group, which the kill takes down with its child.
-  const ProcessResult started =
-      runProcess("setsid " + quote(DRAPE_EXECUTABLE) + " " + command + " </dev/null >/dev/null 2>&1 & echo $!",
-                 batchScratch());
-  const pid_t pid = std::stoi(linesOf(started.out).at(0));
-  auto finished = [&] {
-    std::vector<std::string> ids;
-    for (int i = 0; i < 4; ++i)
-      if (fs::exists(outDir / ("tablecloth__set" + std::to_string(i)) / "done.json"))
-        ids.push_back("tablecloth__set" + std::to_string(i));
-    return ids;
-  };
-  // Running, and not a zombie that nobody reaps yet (its parent shell has exited).
-  auto alive = [&] {
-    if (::kill(pid, 0) != 0) return false;
-    const std::string stat = readWhole("/proc/" + std::to_string(pid) + "/stat");
-    const auto paren = stat.rfind(')');
-    return paren != std::string::npos && paren + 2 < stat.size() && stat[paren + 2] != 'Z';
-  };
-  for (int i = 0; i < 6000 && finished().empty() && alive(); ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  ::kill(-pid, SIGKILL);
-  for (int i = 0; i < 1000 && alive(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  const std::vector<std::string> before = finished();
-  ASSERT_GE(before.size(), 1u);
-  ASSERT_LT(before.size(), 4u) << "the batch ended before it was killed";
-  EXPECT_FALSE(fs::exists(outDir / "summary.json"));
-  std::vector<fs::file_time_type> times;
-  for (const auto& id : before) times.push_back(fs::last_write_time(outDir / id / "done.json"));
-
-  const ProcessResult r = drape(command);
-  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
-  EXPECT_NE(r.out.find("4 jobs, " + std::to_string(before.size()) + " finished before; running " +
-                       std::to_string(4 - before.size())),
-            std::string::npos)
-      << r.out;
-  EXPECT_EQ(progressLines(r.out).size(), 4 - before.size()) << r.out;
-  EXPECT_EQ(finished().size(), 4u);
-  for (size_t i = 0; i < before.size(); ++i)
-    EXPECT_EQ(fs::last_write_time(outDir / before[i] / "done.json"), times[i]) << before[i];
   EXPECT_EQ(json::parse(readWhole(outDir / "summary.json")).size(), 4u);
 }
 

@@ -1,4 +1,6 @@
-// drape --simulate (Newton drape), --render and --bench end to end through the executable.
+// drape --simulate (Newton drape), --render, --bench and --make-avatar end to end through the executable. The
+// extremes grid of --bench and the mannequin --make-avatar makes in every run are slow tests
+// (tests/slow/cli_bench_extremes_test.cpp, tests/slow/cli_make_avatar_test.cpp).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -6,22 +8,13 @@
 #include <set>
 #include <sstream>
 
+#include "cli_solver_support.h"
 #include "drape/render/png_io.h"
 #include "run_process.h"
 #include "shared_data.h"
 
 namespace drape::test {
 namespace {
-
-const std::filesystem::path kScratch = testOutputDir() / "cli_solver";
-
-ProcessResult drape(const std::string& args) {
-  return runProcess(quote(DRAPE_EXECUTABLE) + " " + args + " </dev/null", kScratch);
-}
-
-std::string asset(const std::string& relative) {
-  return quote((assetsDir() / relative).string());
-}
 
 TEST(CliSimulate, DrapeWritesGarmentAndPerStepStats) {
   const auto obj = kScratch / "hang.obj", stats = kScratch / "hang.json";
@@ -375,31 +368,6 @@ TEST(CliBench, SweepReportsEveryRunAgainstTheReference) {
   for (const auto& run : j.at("runs")) EXPECT_GT(run.at("wall_time_s").get<double>(), 0.0);
 }
 
-TEST(CliBench, ExtremesGridReportsEveryCellAndItsVerdict) {
-  // The hanging cloth at 20 cm for 0.01 s: every cell of the grid runs in the drape and is reported with its verdict;
-  // the exit status says whether every cell held.
-  const auto report = kScratch / "extremes.json";
-  auto r = drape("--bench " + asset("scenes/hanging_cloth.json") +
-                 " --set mesh.target_edge_length=0.2 --extremes --solver drape --max-sim-time 0.01 -o " +
-                 quote(report.string()));
-  const auto j = nlohmann::json::parse(readWhole(report));
-  const auto& cells = j.at("cells");
-  ASSERT_EQ(cells.size(), 27u);  // 12 settings at both ends, 3 combinations
-  int failed = 0;
-  for (const auto& cell : cells) {
-    EXPECT_EQ(cell.at("stage"), "drape");
-    EXPECT_FALSE(cell.at("settings").empty()) << cell.at("cell");
-    EXPECT_TRUE(cell.at("finite").get<bool>()) << cell.at("cell");
-    failed += !cell.at("holds").get<bool>();
-  }
-  EXPECT_EQ(j.at("failed_cells"), failed);
-  EXPECT_EQ(r.exitCode, failed == 0 ? 0 : 1) << r.err << r.out;
-  EXPECT_NE(r.out.find(std::to_string(27 - failed) + " of 27 cells hold"), std::string::npos) << r.out;
-  auto both = drape("--bench " + asset("scenes/hanging_cloth.json") + " --extremes --sweep solver.cg.tolerance=1e-1");
-  EXPECT_EQ(both.exitCode, 1);
-  EXPECT_NE(both.err.find("--extremes: only with --bench, and not with --sweep"), std::string::npos) << both.err;
-}
-
 TEST(CliBench, FailsWhenTheReferenceDoesNotFinishItsDrape) {
   // Three steps of the reference's 0.25 ms cannot reach 0.01 s: the reference stops at the step limit, and the
   // distances to it would measure nothing.
@@ -419,20 +387,6 @@ TEST(CliBench, FailsWhenTheReferenceDoesNotFinishItsDrape) {
 
 namespace drape::test {
 namespace {
-
-// Two runs write the same file: a batch's mannequin is the same body whichever run or node made it.
-TEST(CliMakeAvatar, BuildsTheSameMannequinFromMeasurementsInEveryRun) {
-  const auto body = kScratch / "female.obj", again = kScratch / "again" / "female.obj";
-  std::filesystem::create_directories(again.parent_path());
-  auto r = drape("--make-avatar " + asset("avatars/female.yaml") + " -o " + quote(body.string()));
-  ASSERT_EQ(r.exitCode, 0) << r.err;
-  auto info = drape("--info " + quote(body.string()));
-  ASSERT_EQ(info.exitCode, 0) << info.err;
-  EXPECT_NE(info.out.find("triangles: 2"), std::string::npos) << info.out;  // 20k-29k triangles
-  r = drape("--make-avatar " + asset("avatars/female.yaml") + " -o " + quote(again.string()));
-  ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_TRUE(readWhole(body) == readWhole(again));
-}
 
 TEST(CliMakeAvatar, BadMeasurementsNameTheFile) {
   auto r = drape("--make-avatar " + asset("fabrics/denim.json") + " -o " + quote((kScratch / "x.obj").string()));

@@ -206,6 +206,18 @@ TEST(Cli, ListSettingsAndFabrics) {
   auto s = drape("--list-settings");
   EXPECT_EQ(s.exitCode, 0);
   EXPECT_NE(s.out.find("mesh.target_edge_length = 0.01 [m]"), std::string::npos) << s.out;
+  // Under group headings in the table's order: the mesh before the preview before the drape before the output.
+  const size_t mesh = s.out.find("[mesh] "), preview = s.out.find("\n[preview] "), drapeGroup = s.out.find("\n[drape] "),
+               output = s.out.find("\n[output] ");
+  ASSERT_NE(mesh, std::string::npos) << s.out;
+  EXPECT_LT(mesh, s.out.find("mesh.target_edge_length"));
+  EXPECT_LT(mesh, preview);
+  EXPECT_LT(preview, s.out.find("solver.preview.time_step"));
+  EXPECT_LT(preview, drapeGroup);
+  EXPECT_LT(drapeGroup, s.out.find("solver.newton.h_max"));
+  EXPECT_LT(drapeGroup, output);
+  EXPECT_NE(output, std::string::npos);
+  EXPECT_EQ(s.out.find("solver.newton.block_map"), std::string::npos) << "an implementation switch is no setting";
   auto f = drape("--list-fabrics");
   EXPECT_EQ(f.exitCode, 0);
   for (const char* name : {"cotton_shirting", "denim", "silk_charmeuse", "jersey_knit", "wool_suiting",

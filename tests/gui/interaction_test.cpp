@@ -123,9 +123,9 @@ TEST_F(InteractionTest, PreviewThenDrapeStartsFromThePreviewState) {
   setMaxSteps(12);
   runToFinish(actions().preview);
   ASSERT_EQ(trace.reports.size(), 12u);
-  for (const StepReport& r : trace.reports) EXPECT_EQ(r.stage, "preview");
+  for (const StepReport& r : trace.reports) EXPECT_EQ(r.stage, Stage::Preview);
   const auto preview = window->currentSnapshot();
-  EXPECT_EQ(preview->stage, "preview");
+  EXPECT_EQ(preview->stage, Stage::Preview);
   ASSERT_GT((preview->positions - placed->positions).rowwise().norm().maxCoeff(), 0.01) << "the preview moved";
   EXPECT_FALSE(actions().preview->isEnabled()) << "the preview finished";
   EXPECT_TRUE(actions().drape->isEnabled());
@@ -137,7 +137,7 @@ TEST_F(InteractionTest, PreviewThenDrapeStartsFromThePreviewState) {
   // The first drape snapshot (a preview snapshot of the paused state may still arrive before it).
   std::shared_ptr<const Snapshot> start;
   for (size_t i = firstDrapeSnapshot; i < trace.snapshots.size() && !start; ++i) {
-    if (trace.snapshots[i]->stage == "drape")
+    if (trace.snapshots[i]->stage == Stage::Drape)
       start = trace.snapshots[i];
     else
       EXPECT_EQ(trace.snapshots[i]->time, preview->time);
@@ -147,7 +147,7 @@ TEST_F(InteractionTest, PreviewThenDrapeStartsFromThePreviewState) {
   EXPECT_LT((start->positions - preview->positions).cwiseAbs().maxCoeff(), 1e-12)
       << "the drape starts from the preview's positions, not from the placed garment";
   for (size_t i = firstDrapeReport; i < trace.reports.size(); ++i) {
-    EXPECT_EQ(trace.reports[i].stage, "drape");
+    EXPECT_EQ(trace.reports[i].stage, Stage::Drape);
     EXPECT_GT(trace.reports[i].time, preview->time);
   }
   EXPECT_FALSE(actions().preview->isEnabled()) << "no preview once the drape has started";
@@ -237,7 +237,7 @@ TEST_F(InteractionTest, CtrlClickPinsUndoRedoSaveAndThePinnedVertexStays) {
 
   // The pinned vertex stays where it was pinned while the rest falls.
   runToFinish(actions().resume);  // max_steps more steps of the continued preview
-  EXPECT_EQ(trace.reports.back().stage, "preview");
+  EXPECT_EQ(trace.reports.back().stage, Stage::Preview);
   const auto after = window->currentSnapshot();
   EXPECT_GT(after->time, before->time);
   EXPECT_LT((after->positions.row(vertex) - before->positions.row(vertex)).norm(), 1e-3);
@@ -297,7 +297,7 @@ TEST_F(InteractionTest, FabricChangeDuringADrapeRestartsFromTheLastPreviewState)
   EXPECT_EQ(window->currentSnapshot()->time, preview->time);
   EXPECT_LT((window->currentSnapshot()->positions - preview->positions).cwiseAbs().maxCoeff(), 1e-12);
   actions().drape->trigger();
-  ASSERT_TRUE(waitUntil([&] { return !trace.reports.empty() && trace.reports.back().stage == "drape"; }, 60000));
+  ASSERT_TRUE(waitUntil([&] { return !trace.reports.empty() && trace.reports.back().stage == Stage::Drape; }, 60000));
   ASSERT_TRUE(waitUntil([&] { return trace.reports.back().time > preview->time + 0.002; }, 60000));
   ASSERT_EQ(controller()->runState(), qt::RunState::Running);
 
@@ -312,13 +312,13 @@ TEST_F(InteractionTest, FabricChangeDuringADrapeRestartsFromTheLastPreviewState)
       if (trace.snapshots[i]->time == preview->time) first = trace.snapshots[i];
     return first != nullptr;
   }));
-  EXPECT_EQ(first->stage, "drape");
+  EXPECT_EQ(first->stage, Stage::Drape);
   EXPECT_LT((first->positions - preview->positions).cwiseAbs().maxCoeff(), 1e-12);
   EXPECT_GT((first->positions - placed->positions).cwiseAbs().maxCoeff(), 0.01);
   // It keeps running without a click: more drape steps after the restart.
   const size_t reportsNow = trace.reports.size();
   ASSERT_TRUE(waitUntil([&] { return trace.reports.size() >= reportsNow + 3; }, 60000));
-  EXPECT_EQ(trace.reports.back().stage, "drape");
+  EXPECT_EQ(trace.reports.back().stage, Stage::Drape);
   actions().pause->trigger();
   waitStopped(qt::RunState::Paused);
 
@@ -361,7 +361,7 @@ TEST_F(InteractionTest, ResumeAndDrapeContinueAfterCancel) {
   const size_t more = trace.reports.size();
   runSteps(actions().drape, 2);
   EXPECT_GT(trace.reports[more].time, stoppedAt);
-  EXPECT_EQ(trace.reports[more].stage, "drape");
+  EXPECT_EQ(trace.reports[more].stage, Stage::Drape);
   EXPECT_TRUE(dialogs.errors.empty());
 }
 

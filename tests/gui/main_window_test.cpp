@@ -228,12 +228,12 @@ TEST_F(MainWindowTest, LoadedGarmentStateIsShownAndTheDrapeContinuesFromIt) {
   // The worker's simulation starts from it (this scene's stage is drape: the drape, as from a preview's hand-over).
   ASSERT_TRUE(waitUntil([&] { return window->controller()->latestResumeState().has_value(); }));
   const ResumeState resume = *window->controller()->latestResumeState();
-  EXPECT_EQ(resume.stage, "drape");
+  EXPECT_EQ(resume.stage, Stage::Drape);
   ASSERT_EQ(resume.previewPositions.rows(), lifted.rows());
   EXPECT_LT((resume.previewPositions - lifted).cwiseAbs().maxCoeff(), 1e-6);
   drapeSteps(1);
   EXPECT_GT(window->currentSnapshot()->time, 0.0);
-  EXPECT_EQ(window->currentSnapshot()->stage, "drape");
+  EXPECT_EQ(window->currentSnapshot()->stage, Stage::Drape);
   EXPECT_TRUE(dialogs.errors.empty());
 
   // Another garment's state: the dialog names the file, the running state stays.

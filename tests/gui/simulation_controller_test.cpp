@@ -2,7 +2,6 @@
 // the garment moves, pause / cancel / reset / destruction during a step are safe.
 #include "drape/qt/simulation_controller.h"
 
-#include <QElapsedTimer>
 #include <QThread>
 #include <chrono>
 #include <map>
@@ -68,7 +67,7 @@ TEST_F(SimulationControllerTest, DrapeStepsOnTheWorkerAndSnapshotsArriveOnTheUiT
   simulation.reset();  // the worker owns it now
   ASSERT_TRUE(waitUntil([&] { return !rec.snapshots.empty(); }));
   const auto placed = rec.snapshots.front();
-  EXPECT_EQ(placed->stage, "placed");
+  EXPECT_EQ(placed->stage, Stage::Placed);
   EXPECT_EQ(placed->positions.rows(), vertices);
   EXPECT_EQ(controller.runState(), qt::RunState::Ready);
 
@@ -106,14 +105,11 @@ TEST_F(SimulationControllerTest, CancelMidStepThenResetReturnsToThePlacedGarment
   const auto placed = rec.snapshots.front();
   controller.start();
   ASSERT_TRUE(waitUntil([&] { return rec.reports.size() >= 2; }));
-  QElapsedTimer timer;
-  timer.start();
   controller.cancel();
   ASSERT_TRUE(waitUntil([&] { return controller.runState() == qt::RunState::Cancelled; }, 10000));
   const size_t reportsAtCancel = rec.reports.size();
   QTest::qWait(300);
   EXPECT_LE(rec.reports.size(), reportsAtCancel + 1) << "at most the interrupted step reports after cancel";
-  EXPECT_LT(timer.elapsed(), 10000);
   // After a cancel, start (Resume) continues from the kept state: the engine's cancel flag is cleared.
   const double cancelledAt = rec.reports.back().time;
   const size_t reportsBeforeResume = rec.reports.size();
@@ -141,24 +137,24 @@ TEST_F(SimulationControllerTest, CancelMidStepThenResetReturnsToThePlacedGarment
       [&] { return controller.runState() == qt::RunState::Ready && rec.snapshots.size() > snapshotsBefore; }));
   const auto reset = rec.snapshots.back();
   EXPECT_EQ(reset->time, 0.0);
-  EXPECT_EQ(reset->stage, "placed");
+  EXPECT_EQ(reset->stage, Stage::Placed);
   EXPECT_LT(maxDisplacement(*reset, *placed), 1e-12);
   controller.start();
   ASSERT_TRUE(waitUntil([&] { return rec.reports.size() >= afterSecondCancel + 3; }));
   EXPECT_TRUE(rec.errors.empty());
 }
 
-TEST_F(SimulationControllerTest, DestroyingTheControllerDuringAStepJoinsPromptly) {
+// Destroying the controller while its worker steps cancels the step and joins the thread: no crash, no error, and a
+// hang fails at ctest's timeout.
+TEST_F(SimulationControllerTest, DestroyingTheControllerDuringAStepJoinsTheWorker) {
   auto controller = std::make_unique<qt::SimulationController>();
   Recorder rec;
   rec.attach(*controller);
   controller->setSimulation(makeSimulation("0.04"));
   controller->start();
   ASSERT_TRUE(waitUntil([&] { return !rec.reports.empty(); }));
-  QElapsedTimer timer;
-  timer.start();
-  controller.reset();  // cancels the step in progress and joins the thread
-  EXPECT_LT(timer.elapsed(), 10000);
+  controller.reset();
+  EXPECT_TRUE(rec.errors.empty());
 }
 
 TEST_F(SimulationControllerTest, DragCommandsReachTheWorkersSimulation) {
@@ -250,8 +246,8 @@ TEST_F(SimulationControllerTest, PreviewThatStartsOverAndRecoversIsLoggedAsInfor
   EXPECT_TRUE(rec.infos.front().contains("the preview starts over from the placed garment"))
       << rec.infos.front().toStdString();
   EXPECT_TRUE(rec.notices.empty()) << rec.notices.front().toStdString();
-  EXPECT_EQ(rec.reports[1].stage, "preview");
-  EXPECT_EQ(rec.reports[2].stage, "drape");
+  EXPECT_EQ(rec.reports[1].stage, Stage::Preview);
+  EXPECT_EQ(rec.reports[2].stage, Stage::Drape);
   EXPECT_TRUE(rec.errors.empty());
 }
 
@@ -264,8 +260,8 @@ TEST_F(SimulationControllerTest, TornPreviewIsGivenUpWithANotice) {
   EXPECT_TRUE(rec.infos.empty());  // no restart: jersey is below the softer retry's Courant number
   EXPECT_TRUE(rec.notices.front().contains("the drape starts from the placed garment"))
       << rec.notices.front().toStdString();
-  EXPECT_EQ(rec.reports[0].stage, "preview");
-  EXPECT_EQ(rec.reports[1].stage, "drape");
+  EXPECT_EQ(rec.reports[0].stage, Stage::Preview);
+  EXPECT_EQ(rec.reports[1].stage, Stage::Drape);
   EXPECT_TRUE(rec.errors.empty());
 }
 
@@ -276,7 +272,7 @@ TEST_F(SimulationControllerTest, TornPreviewAloneGoesOnWithOneNotice) {
   runTornDefaultScene("preview", 3, controller, rec);
   ASSERT_EQ(rec.notices.size(), 1u);
   EXPECT_TRUE(rec.notices.front().contains("only the drape's can be trusted")) << rec.notices.front().toStdString();
-  for (const StepReport& r : rec.reports) EXPECT_EQ(r.stage, "preview");
+  for (const StepReport& r : rec.reports) EXPECT_EQ(r.stage, Stage::Preview);
   EXPECT_TRUE(rec.errors.empty());
 }
 

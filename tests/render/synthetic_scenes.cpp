@@ -83,7 +83,7 @@ Snapshot tableclothScene(int cells, double side, int sphereSubdivisions) {
   s.panelColors = {Eigen::Vector3f(0.55f, 0.12f, 0.10f), Eigen::Vector3f(0.10f, 0.24f, 0.50f)};
   s.triangleStrain = triangleStretch(s.uvs, s.positions, s.triangles);
   s.avatar = makeIcosphere(center, radius, sphereSubdivisions);
-  s.stage = "placed";
+  s.stage = Stage::Placed;
   return s;
 }
 
@@ -126,7 +126,7 @@ Snapshot skirtScene(int rings, int segments, int sphereSubdivisions) {
   s.panelColors = {Eigen::Vector3f(0.62f, 0.30f, 0.12f), Eigen::Vector3f(0.16f, 0.36f, 0.30f)};
   s.triangleStrain = triangleStretch(s.uvs, s.positions, s.triangles);
   s.avatar = makeIcosphere(center, sphereRadius, sphereSubdivisions);
-  s.stage = "preview";
+  s.stage = Stage::Preview;
   return s;
 }
 

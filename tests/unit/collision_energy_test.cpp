@@ -5,14 +5,16 @@
 #include <Eigen/Dense>
 #include <random>
 
-#include "drape/collision/avatar_contact.h"
-#include "drape/collision/contact_factory.h"
-#include "drape/collision/friction.h"
-#include "drape/collision/self_contact.h"
+#include "drape/newton/contact/avatar_contact.h"
+#include "drape/newton/contact/contact_factory.h"
+#include "drape/newton/contact/friction.h"
+#include "drape/newton/contact/self_contact.h"
 #include "drape/geometry/primitives.h"
 
 namespace drape::collision {
 namespace {
+
+using namespace drape::newton;  // the drape's contact energies
 
 using Eigen::VectorXd;
 

@@ -13,7 +13,7 @@
 #include <memory>
 #include <vector>
 
-#include "drape/collision/contact_factory.h"
+#include "drape/newton/contact/contact_factory.h"
 #include "drape/geometry/primitives.h"
 #include "drape/newton/newton_solver.h"
 #include "newton_test_cloths.h"
@@ -50,7 +50,7 @@ SlideResult slide(bool majorizer, int steps) {
   m.pinned = {n + panel * (panel - 1), n + panel * panel - 1};
   m.velocities = Eigen::VectorXd::Zero(m.positions.size());
   for (int i = 0; i < n; ++i) m.velocities(3 * i) = 0.0175;
-  collision::ContactSetup setup;
+  newton::ContactSetup setup;
   setup.avatar = std::make_shared<collision::AvatarCollider>(
       makeBox(Eigen::Vector3d(-1.0, -1.0, -1.0), Eigen::Vector3d(1.0, 0.0, 1.0)));
   setup.avatarContact.thickness = thickness;
@@ -60,7 +60,7 @@ SlideResult slide(bool majorizer, int steps) {
   const Eigen::VectorXd start = m.positions;
   NewtonSettings s;
   s.relaxation = false;
-  NewtonSolver solver(m, s, collision::makeContactEnergies(setup, m.numVertices(), m.triangles, {}));
+  NewtonSolver solver(m, s, newton::makeContactEnergies(setup, m.numVertices(), m.triangles, {}));
   SlideResult out;
   for (int k = 0; k < steps; ++k) {
     const NewtonStepReport r = solver.step();

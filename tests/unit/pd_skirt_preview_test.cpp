@@ -1,7 +1,7 @@
-// Issue 6: the previews of the lower-body garments (the library A-line skirt and trousers, a tube on a sphere) keep
-// them on the body. The A-line skirt: without the preview's quasi-static start (solver.preview.relaxation_time
-// 0.05 s) the first steps close the side seams at metres per second, the skirt passes through the hips and hands
-// between its vertices and falls off the mannequin.
+// Issue 6: the previews of the lower-body garments (the library A-line skirt, a tube on a sphere) keep them on the
+// body. The A-line skirt: without the preview's quasi-static start (solver.preview.relaxation_time 0.05 s) the first
+// steps close the side seams at metres per second, the skirt passes through the hips and hands between its vertices
+// and falls off the mannequin. The library trousers' preview is a slow test (tests/slow/pd_trousers_preview_test.cpp).
 // Runs ~5 s.
 #include <gtest/gtest.h>
 
@@ -89,26 +89,6 @@ TEST(PdSkirtPreview, WaistbandStaysAboveTheEquatorOfASphere) {
   EXPECT_GT(height, 1.06);  // placed at 1.09 m; the equator is at 1.0 m
   EXPECT_LT(last.maxStrain, 0.1);
   EXPECT_TRUE(sim.previewFailure().empty()) << sim.previewFailure();
-}
-
-// At the paper's 1/120 s preview step the library trousers' hems close through the feet (their seams close within a
-// few steps, the hems 45 cm round against a foot 57-60 cm round) and the preview tears.
-// At the default 1/480 s the hems ride up onto the insteps, as in Newton's drape.
-TEST(PdTrousersPreview, HemsDoNotTearAtTheFeet) {
-  SceneRequest request;
-  request.input = assetsDir() / "scenes" / "trousers.json";
-  request.overrides = {{"solver.stage", "preview"}, {"solver.max_sim_time", "0.25"}};
-  Simulation sim(loadScene(request));
-  double worst = 0.0;
-  while (!sim.finished()) {
-    const StepReport r = sim.step();
-    ASSERT_NE(r.status, StepStatus::Diverged) << "t = " << r.time;
-    if (r.time > sim.scene().settings.number("solver.preview.relaxation_time")) worst = std::max(worst, r.maxStrain);
-  }
-  std::printf("[ PdTrousersPreview ] largest stretch after the quasi-static start %.0f %%\n", 100.0 * worst);
-  EXPECT_TRUE(sim.previewFailure().empty()) << sim.previewFailure();
-  EXPECT_LT(worst, 1.5);
-  ASSERT_TRUE(sim.positions().allFinite());
 }
 
 }  // namespace drape::test

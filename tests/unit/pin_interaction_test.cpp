@@ -123,13 +123,13 @@ TEST(Resume, EditedPreviewContinuesFromTheCurrentState) {
   Simulation first(tablecloth("preview"));
   for (int i = 0; i < 10; ++i) first.step();
   const ResumeState state = first.resumeState();
-  EXPECT_EQ(state.stage, "preview");
+  EXPECT_EQ(state.stage, Stage::Preview);
   Simulation edited(tablecloth("preview", "denim"), state);
   EXPECT_TRUE(edited.resumed());
-  EXPECT_EQ(edited.stage(), "preview");
+  EXPECT_EQ(edited.stage(), Stage::Preview);
   EXPECT_DOUBLE_EQ(edited.time(), first.time());
   EXPECT_LT((edited.positions() - first.positions()).cwiseAbs().maxCoeff(), 1e-12);
-  EXPECT_NE(edited.snapshot().stage, "placed");
+  EXPECT_NE(edited.snapshot().stage, Stage::Placed);
   // It keeps moving with the velocities it had, not from rest: the next steps match the unedited run's
   // direction of travel (both fall).
   const double before = edited.positions().col(1).mean();
@@ -141,16 +141,16 @@ TEST(Resume, EditedDrapeRestartsFromTheLastPreviewState) {
   Scene scene = tablecloth("full");
   scene.settings.set("solver.preview.max_time", "0.1", "test");
   Simulation first(std::move(scene));
-  while (first.stage() == "preview") first.step();
+  while (first.stage() == Stage::Preview) first.step();
   const Eigen::MatrixX3d previewEnd = first.positions();
   const double previewEndTime = first.time();
   for (int i = 0; i < 60; ++i) first.step();
   ASSERT_GT((first.positions() - previewEnd).cwiseAbs().maxCoeff(), 1e-7);  // the drape moved on (slowly: relaxation)
   const ResumeState state = first.resumeState();
-  EXPECT_EQ(state.stage, "drape");
+  EXPECT_EQ(state.stage, Stage::Drape);
   Simulation edited(tablecloth("full", "denim"), state);
   EXPECT_TRUE(edited.resumed());
-  EXPECT_EQ(edited.stage(), "drape");
+  EXPECT_EQ(edited.stage(), Stage::Drape);
   EXPECT_DOUBLE_EQ(edited.time(), previewEndTime);
   EXPECT_LT((edited.positions() - previewEnd).cwiseAbs().maxCoeff(), 1e-12);
 }
@@ -161,7 +161,7 @@ TEST(Resume, DrapeWithoutPreviewStartsFromThePlacedGarment) {
   Simulation edited(tablecloth("drape", "denim"), first.resumeState());
   EXPECT_FALSE(edited.resumed());
   EXPECT_DOUBLE_EQ(edited.time(), 0.0);
-  EXPECT_EQ(edited.snapshot().stage, "placed");
+  EXPECT_EQ(edited.snapshot().stage, Stage::Placed);
 }
 
 TEST(Resume, RemeshedSceneStartsOver) {
@@ -192,7 +192,7 @@ TEST(Simulation, TimeLimitAlsoEndsThePreviewOfTheFullPipeline) {
     sim.step();
     ++steps;
   }
-  EXPECT_EQ(sim.stage(), "preview");
+  EXPECT_EQ(sim.stage(), Stage::Preview);
   EXPECT_GE(sim.time(), 0.05 - 1e-9);
   EXPECT_LT(sim.time(), 0.05 + 0.02);  // stopped within a preview step of the limit
 }

@@ -1,7 +1,8 @@
 // The placement fit (garment/placement_fit.h, through buildSceneGarment): patterns laid out for the avatar they are
 // on stay where they are; GarmentCode's shirt, laid out for mean_all, is moved onto a mannequin 15 % broader at the
 // shoulders and 10 % taller (tests/data/bodies/broad_tall.yaml) with no vertex inside the body, its sleeves around
-// the arms, a warning naming the panels it moved far, and a lower strain after a short drape than without the fit.
+// the arms and a warning naming the panels it moved far. That it is less strained after a short drape than without the
+// fit is a slow test (tests/slow/placement_fit_drape_test.cpp).
 #include "drape/garment/placement_fit.h"
 
 #include <gtest/gtest.h>
@@ -10,21 +11,14 @@
 #include <string>
 
 #include "drape/avatar/body_landmarks.h"
-#include "drape/avatar/body_measurements.h"
-#include "drape/avatar/mannequin.h"
 #include "drape/collision/avatar_collider.h"
 #include "drape/scene/scene.h"
 #include "drape/sim/scene_garment.h"
-#include "drape/sim/simulation.h"
+#include "placement_fit_support.h"
 #include "shared_data.h"
 
 namespace drape {
 namespace {
-
-Scene sceneWithFit(SceneRequest request, bool fit) {
-  request.overrides.push_back({"placement.fit", fit ? "true" : "false"});
-  return loadScene(request);
-}
 
 double maxMove(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) {
   return (a - b).rowwise().norm().maxCoeff();
@@ -112,30 +106,6 @@ TEST(PlacementFit, AvatarWithoutLandmarksLeavesThePatternAsLaidOut) {
   EXPECT_EQ(warned, 1);
 }
 
-// GarmentCode's shirt on the broad, tall mannequin, placed with the fit on or off.
-class BroadTallBody : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    MannequinOptions coarse;
-    coarse.facetSize = 0.015;
-    s_body = new TriangleMesh(
-        makeMannequin(loadBodyMeasurements(test::testDataDir() / "bodies" / "broad_tall.yaml"), coarse));
-  }
-  static void TearDownTestSuite() { delete s_body; }
-
-  static Scene shirt(const std::filesystem::path& pattern, bool fit, double edge) {
-    SceneRequest request;
-    request.input = pattern;
-    request.overrides.push_back({"mesh.target_edge_length", std::to_string(edge)});
-    Scene scene = sceneWithFit(request, fit);
-    scene.avatar = *s_body;
-    return scene;
-  }
-
-  static TriangleMesh* s_body;
-};
-TriangleMesh* BroadTallBody::s_body = nullptr;
-
 // Distance from p to the line of axis.
 double distanceToAxis(const Eigen::Vector3d& p, const BodyAxis& axis) {
   const Eigen::Vector3d q = p - axis.origin;
@@ -189,26 +159,6 @@ TEST_F(BroadTallBody, WithoutTheFitTheShirtStartsInsideTheBodyOrOffTheArms) {
   const Start start = startOf(buildSceneGarment(shirt(pattern, false, 0.02), &diagnostics), *s_body);
   EXPECT_GT(start.inside + start.sleeveOffTheArm, 0);
   EXPECT_FALSE(warnedAboutAMove(diagnostics));
-}
-
-// Largest triangle strain after a short Newton drape (2 cm mesh).
-double strainAfterShortDrape(Scene scene) {
-  scene.settings.set("solver.stage", "drape", "test");
-  scene.settings.set("solver.max_sim_time", "0.3", "test");
-  Simulation sim(std::move(scene));
-  StepReport last;
-  while (!sim.finished()) {
-    last = sim.step();
-    if (last.status == StepStatus::Diverged) break;
-  }
-  return last.maxStrain;
-}
-
-TEST_F(BroadTallBody, ShortDrapeOfTheFittedShirtIsLessStrained) {
-  DRAPE_SHARED_FILE(pattern, "garmentcode/shirt_mean_specification.json");
-  const double fitted = strainAfterShortDrape(shirt(pattern, true, 0.02));
-  const double asLaidOut = strainAfterShortDrape(shirt(pattern, false, 0.02));
-  EXPECT_LT(fitted, asLaidOut);
 }
 
 }  // namespace

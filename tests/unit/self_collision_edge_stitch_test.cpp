@@ -11,8 +11,8 @@
 #include <numeric>
 #include <set>
 
-#include "drape/collision/contact_factory.h"
-#include "drape/collision/self_contact.h"
+#include "drape/newton/contact/contact_factory.h"
+#include "drape/newton/contact/self_contact.h"
 #include "drape/newton/newton_solver.h"
 #include "drape/pd/cloth_collision.h"
 #include "drape/pd/contact_solve.h"
@@ -129,8 +129,8 @@ TEST(SelfCollisionEdgeStitch, PreviewClothContactsExcludeTheClosedSeam) {
   EXPECT_LT(with.candidateCount(), without.candidateCount());
 }
 
-collision::ContactSetup selfOnly() {
-  collision::ContactSetup setup;
+newton::ContactSetup selfOnly() {
+  newton::ContactSetup setup;
   setup.selfCollision = true;
   setup.selfContact.thickness = 0.004;
   setup.selfContact.stiffness = 100.0;
@@ -140,12 +140,12 @@ collision::ContactSetup selfOnly() {
 TEST(SelfCollisionEdgeStitch, NewtonSelfContactExcludesTheClosedSeam) {
   const ClothModel m = closedFoldedSeam();
   const int nv = m.numVertices();
-  auto with = collision::makeContactEnergies(selfOnly(), nv, m.triangles, {}, m.edgeStitches);
-  auto without = collision::makeContactEnergies(selfOnly(), nv, m.triangles, {});
+  auto with = newton::makeContactEnergies(selfOnly(), nv, m.triangles, {}, m.edgeStitches);
+  auto without = newton::makeContactEnergies(selfOnly(), nv, m.triangles, {});
   ASSERT_EQ(with.size(), 1u);
   ASSERT_EQ(without.size(), 1u);
-  const auto* selfWith = dynamic_cast<const collision::SelfContactEnergy*>(with[0].get());
-  const auto* selfWithout = dynamic_cast<const collision::SelfContactEnergy*>(without[0].get());
+  const auto* selfWith = dynamic_cast<const newton::SelfContactEnergy*>(with[0].get());
+  const auto* selfWithout = dynamic_cast<const newton::SelfContactEnergy*>(without[0].get());
   ASSERT_TRUE(selfWith && selfWithout);
   const size_t nWith = selfWith->contacts(m.positions).size(), nWithout = selfWithout->contacts(m.positions).size();
   std::printf("Newton self contacts on the closed seam: %zu without the edge stitches, %zu with\n", nWithout, nWith);
@@ -170,8 +170,8 @@ TEST(SelfCollisionEdgeStitch, NewtonDrapeWithSelfCollisionClosesTheSeam) {
   ASSERT_NEAR(maxSeamGap(m, m.positions), gap, 1e-12);
   auto drape = [&](bool exclude) {
     auto energies = exclude
-                        ? collision::makeContactEnergies(selfOnly(), m.numVertices(), m.triangles, {}, m.edgeStitches)
-                        : collision::makeContactEnergies(selfOnly(), m.numVertices(), m.triangles, {});
+                        ? newton::makeContactEnergies(selfOnly(), m.numVertices(), m.triangles, {}, m.edgeStitches)
+                        : newton::makeContactEnergies(selfOnly(), m.numVertices(), m.triangles, {});
     newton::NewtonSolver solver(m, newton::NewtonSettings{}, std::move(energies));
     bool hasSelf = false;
     for (const std::string& name : solver.energyNames()) hasSelf |= name == "self_contact";

@@ -34,7 +34,7 @@ TEST(StartState, NewtonsRestStateIsAFixedPointOfTheDrapeStartedAtIt) {
   const Eigen::MatrixX3d rest = runToEnd(alone, &steps);
   ASSERT_EQ(alone.endReason(), "AtRest");
 
-  Simulation again(defaultScene("drape"), startStateAt("drape", rest));
+  Simulation again(defaultScene("drape"), startStateAt(StagePlan::Drape, rest));
   ASSERT_TRUE(again.resumed());
   EXPECT_DOUBLE_EQ(again.time(), 0.0);
   int againSteps = 0;
@@ -58,12 +58,13 @@ TEST(StartState, PreviewAndPipelineStartAtTheGivenPositions) {
   ASSERT_GT((moved - fresh.positions()).rowwise().norm().mean(), 0.01);
 
   for (const char* stage : {"preview", "full"}) {
-    Simulation sim(defaultScene(stage), startStateAt(stage, moved));
+    const Scene scene = defaultScene(stage);
+    Simulation sim(scene, startStateAt(scene.settings.stagePlan(), moved));
     ASSERT_TRUE(sim.resumed()) << stage;
-    EXPECT_EQ(sim.stage(), "preview") << stage;
+    EXPECT_EQ(sim.stage(), Stage::Preview) << stage;
     EXPECT_EQ((sim.positions() - moved).cwiseAbs().maxCoeff(), 0.0) << stage;
     const StepReport r = sim.step();
-    EXPECT_EQ(r.stage, "preview") << stage;
+    EXPECT_EQ(r.stage, Stage::Preview) << stage;
     // At rest at the start (velocities zero): one step moves a vertex by what the forces do in 1/480 s, far less
     // than the 1 cm back to the placed garment.
     EXPECT_LT((sim.positions() - moved).rowwise().norm().mean(), 2e-3) << stage;
@@ -79,7 +80,7 @@ TEST(StartState, DrapeFromAPreviewThatRanToTheLimitHasItsOwnTimeLimit) {
   while (!sim.finished()) sim.step();
   ASSERT_EQ(sim.endReason(), "MaxSimTime");
   ResumeState from = sim.resumeState();
-  from.stage = "drape";
+  from.stage = Stage::Drape;
   from.previewPositions = from.positions;
   from.previewTime = from.time;
   Scene drapeScene = preview;
@@ -89,7 +90,7 @@ TEST(StartState, DrapeFromAPreviewThatRanToTheLimitHasItsOwnTimeLimit) {
   EXPECT_FALSE(drape.finished());
   int steps = 0;
   while (!drape.finished()) {
-    EXPECT_EQ(drape.step().stage, "drape");
+    EXPECT_EQ(drape.step().stage, Stage::Drape);
     ++steps;
   }
   EXPECT_GT(steps, 0);

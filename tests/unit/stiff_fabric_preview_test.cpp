@@ -4,7 +4,8 @@
 // (solver.preview.retry_courant_limit): from the placed garment at scene time 0, its fabric softened to the retry's
 // Courant number. A tear with no softer retry left starts over once more, with the avatar contact targets not held
 // before the garment is sewn (solver.preview.retry_without_held_targets). A tear after that is given up as before
-// (the drape from the placed garment; a preview alone goes on and says its result is wrong).
+// (the drape from the placed garment; a preview alone goes on and says its result is wrong). The torn cotton preview
+// that starts over softer and stays whole is a slow test (tests/slow/stiff_fabric_preview_retry_test.cpp).
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -13,80 +14,10 @@
 
 #include "drape/scene/scene.h"
 #include "drape/sim/simulation.h"
-#include "shared_data.h"
+#include "stiff_fabric_preview_support.h"
 
 namespace drape::test {
 namespace {
-
-using Overrides = std::vector<std::pair<std::string, std::string>>;
-
-// The default scene's t-shirt in `fabric` (a preset), settings overridden.
-Scene defaultTshirt(const char* fabric, Overrides overrides) {
-  SceneRequest request;
-  request.input = assetsDir() / "scenes" / "default.json";
-  request.fabricPreset = fabric;
-  request.overrides = std::move(overrides);
-  return loadScene(request);
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
-
-// Cotton shirting: Courant number about 26 at the default preview step; its preview tears at about 0.051 s
-// (docs/BENCHMARKS.md, "Findings worth keeping").
-TEST(PreviewRetry, TornCottonPreviewStartsOverSofterFromThePlacedGarmentAndStaysWhole) {
-  const Overrides ownStiffness = {{"solver.stage", "full"}, {"solver.preview.pipeline_courant_limit", "0"}};
-  Simulation sim(defaultTshirt("cotton_shirting", ownStiffness));
-  const Eigen::MatrixX3d placed = sim.positions();
-  // The Courant number it reports is the fabric's own, computed from the scene's model.
-  EXPECT_GT(sim.previewCourantNumber(), 5.0);
-  EXPECT_EQ(sim.previewCourantLimit(), 0.0);
-  double tornAt = -1.0;
-  while (sim.previewRestarts() == 0 && sim.time() < 0.2) tornAt = sim.step().time;
-  ASSERT_EQ(sim.previewRestarts(), 1) << "the cotton preview did not tear by 0.2 s";
-  EXPECT_GT(tornAt, sim.scene().settings.number("solver.preview.relaxation_time"));
-  // Started over: the preview again, at time 0, from the placed garment, softer.
-  EXPECT_EQ(sim.stage(), "preview");
-  EXPECT_DOUBLE_EQ(sim.time(), 0.0);
-  EXPECT_EQ((sim.positions() - placed).cwiseAbs().maxCoeff(), 0.0);
-  EXPECT_EQ(sim.previewCourantLimit(), 5.0);
-  ASSERT_EQ(sim.previewRestartReasons().size(), 1u);
-  const std::string said = sim.previewRestartReasons()[0];
-  EXPECT_TRUE(sim.previewFailure().empty()) << sim.previewFailure();  // started over: not a failure
-  EXPECT_TRUE(contains(said, "starts over from the placed garment")) << said;
-  EXPECT_TRUE(contains(said, " to 5 (solver.preview.retry_courant_limit)")) << said;
-  EXPECT_FALSE(contains(said, "the drape starts")) << said;
-  EXPECT_FALSE(contains(said, "--set solver.preview.courant_limit")) << said;  // no hint: it is done already
-  // The same preview the scene would run with courant_limit 5 from the start: its first step lands where that one's
-  // does.
-  Overrides soft = ownStiffness;
-  soft.emplace_back("solver.preview.courant_limit", "5");
-  Simulation softFromStart(defaultTshirt("cotton_shirting", soft));
-  EXPECT_LT((sim.positions() - softFromStart.positions()).cwiseAbs().maxCoeff(), 1e-15);
-  const StepReport a = sim.step(), b = softFromStart.step();
-  EXPECT_DOUBLE_EQ(a.time, b.time);
-  EXPECT_LT((sim.positions() - softFromStart.positions()).cwiseAbs().maxCoeff(), 1e-12);
-  // An edit that resumes it keeps it soft (the scene still says courant_limit 0).
-  const ResumeState from = sim.resumeState();
-  EXPECT_EQ(from.previewCourantLimit, 5.0);
-  Simulation edited(defaultTshirt("cotton_shirting", ownStiffness), from);
-  ASSERT_TRUE(edited.resumed());
-  EXPECT_EQ(edited.previewCourantLimit(), 5.0);
-  // The softened preview stays whole past the time the stiff one tore, does not start over again, and, softened,
-  // hands over to the drape at softened_max_time, from its own state.
-  StepReport last;
-  while (sim.stage() == "preview") last = sim.step();
-  const double softenedMaxTime = sim.scene().settings.number("solver.preview.softened_max_time");
-  ASSERT_GT(softenedMaxTime, tornAt);
-  EXPECT_EQ(sim.previewRestarts(), 1);
-  EXPECT_TRUE(sim.previewFailure().empty()) << sim.previewFailure();
-  EXPECT_EQ(sim.previewRecoveries(), std::vector<std::string>{said});  // recovered from the one tear
-  EXPECT_GE(last.time, softenedMaxTime - 1e-12);
-  EXPECT_LT(last.time, softenedMaxTime + last.h + 1e-12);
-  EXPECT_LT(last.maxStrain, 1.0);  // the torn one: 580 %
-  EXPECT_EQ(sim.resumeState().previewPositions.rows(), sim.garment().vertexCount());
-}
 
 TEST(PreviewRetry, ATearAfterTheRetryIsGivenUp) {
   // With a failure strain of 200 % and no quasi-static start, the first step's seam closing (about 300 %) tears the
@@ -100,11 +31,11 @@ TEST(PreviewRetry, ATearAfterTheRetryIsGivenUp) {
   const Eigen::MatrixX3d placed = sim.positions();
   sim.step();
   ASSERT_EQ(sim.previewRestarts(), 1);
-  EXPECT_EQ(sim.stage(), "preview");
+  EXPECT_EQ(sim.stage(), Stage::Preview);
   EXPECT_TRUE(sim.previewFailure().empty()) << sim.previewFailure();
   sim.step();
   EXPECT_EQ(sim.previewRestarts(), 1);
-  EXPECT_EQ(sim.stage(), "drape");
+  EXPECT_EQ(sim.stage(), Stage::Drape);
   EXPECT_TRUE(contains(sim.previewFailure(), "the drape starts from the placed garment")) << sim.previewFailure();
   // Given up after the restart: it recovered from nothing, and the restart's reason is still there.
   EXPECT_TRUE(sim.previewRecoveries().empty());
@@ -143,7 +74,7 @@ TEST(PreviewRetry, NoRetryWhenOffOrWhenTheFabricIsNotThatStiff) {
                                                             setting}));
     sim->step();
     EXPECT_EQ(sim->previewRestarts(), 0) << fabric << ", " << setting.first << " " << setting.second;
-    EXPECT_EQ(sim->stage(), "drape") << fabric << ", " << setting.first << " " << setting.second;
+    EXPECT_EQ(sim->stage(), Stage::Drape) << fabric << ", " << setting.first << " " << setting.second;
     return sim;
   };
   // Off: its message suggests the softening.
@@ -173,7 +104,7 @@ TEST(PreviewRetry, ATearAfterTheSofterRetryStartsOverWithTargetsFreeThenIsGivenU
   ASSERT_EQ(sim.previewRestarts(), 2);
   EXPECT_TRUE(sim.previewTargetsFreed());
   EXPECT_EQ(sim.previewCourantLimit(), 5.0);  // still softened
-  EXPECT_EQ(sim.stage(), "preview");
+  EXPECT_EQ(sim.stage(), Stage::Preview);
   EXPECT_DOUBLE_EQ(sim.time(), 0.0);
   EXPECT_EQ((sim.positions() - placed).cwiseAbs().maxCoeff(), 0.0);
   EXPECT_TRUE(contains(sim.previewRestartReasons()[1], "contact targets not held before it is sewn"))
@@ -187,7 +118,7 @@ TEST(PreviewRetry, ATearAfterTheSofterRetryStartsOverWithTargetsFreeThenIsGivenU
   EXPECT_TRUE(edited.previewTargetsFreed());
   sim.step();
   EXPECT_EQ(sim.previewRestarts(), 2);
-  EXPECT_EQ(sim.stage(), "drape");
+  EXPECT_EQ(sim.stage(), Stage::Drape);
   EXPECT_TRUE(contains(sim.previewFailure(), "the drape starts from the placed garment")) << sim.previewFailure();
   EXPECT_TRUE(sim.previewRecoveries().empty());
   EXPECT_DOUBLE_EQ(sim.time(), 0.0);
@@ -205,7 +136,7 @@ TEST(PreviewRetry, ATearAfterTheSofterRetryStartsOverWithTargetsFreeThenIsGivenU
   Simulation held(defaultTshirt("jersey_knit", alwaysHeld));
   held.step();
   EXPECT_EQ(held.previewRestarts(), 0);
-  EXPECT_EQ(held.stage(), "drape");
+  EXPECT_EQ(held.stage(), Stage::Drape);
 }
 
 // A tear found in the step that hands over to the drape (max_time reached in the first, unhalved 1/480 s step): the
@@ -218,14 +149,14 @@ TEST(PreviewRetry, TearInTheHandOverStepStartsThePreviewOverWithoutTheDrape) {
                                                {"solver.preview.max_time", "0.001"}}));
   const Eigen::MatrixX3d placed = sim.positions();
   const StepReport first = sim.step();
-  EXPECT_EQ(first.stage, "preview");
+  EXPECT_EQ(first.stage, Stage::Preview);
   EXPECT_GT(first.maxStrain, 2.0);
   ASSERT_EQ(sim.previewRestarts(), 1);
-  EXPECT_EQ(sim.stage(), "preview");
+  EXPECT_EQ(sim.stage(), Stage::Preview);
   EXPECT_DOUBLE_EQ(sim.time(), 0.0);
   EXPECT_EQ((sim.positions() - placed).cwiseAbs().maxCoeff(), 0.0);
   EXPECT_EQ(sim.resumeState().previewPositions.rows(), 0);
-  EXPECT_EQ(sim.step().stage, "preview");  // the preview's step again, not the drape's
+  EXPECT_EQ(sim.step().stage, Stage::Preview);  // the preview's step again, not the drape's
 }
 
 // A preview about to hand over a triangle stretched past solver.preview.handoff_strain (here 50 %; the first, unhalved
@@ -244,7 +175,7 @@ TEST(PreviewRetry, OverstretchedHandOverStartsOverWithTargetsFreeOnce) {
   ASSERT_GT(first.maxStrain, 0.5);
   ASSERT_EQ(sim.previewRestarts(), 1);
   EXPECT_TRUE(sim.previewTargetsFreed());
-  EXPECT_EQ(sim.stage(), "preview");
+  EXPECT_EQ(sim.stage(), Stage::Preview);
   EXPECT_DOUBLE_EQ(sim.time(), 0.0);
   EXPECT_EQ((sim.positions() - placed).cwiseAbs().maxCoeff(), 0.0);
   ASSERT_EQ(sim.previewRestartReasons().size(), 1u);
@@ -255,7 +186,7 @@ TEST(PreviewRetry, OverstretchedHandOverStartsOverWithTargetsFreeOnce) {
   const StepReport second = sim.step();
   EXPECT_GT(second.maxStrain, 0.5);
   EXPECT_EQ(sim.previewRestarts(), 1);
-  EXPECT_EQ(sim.stage(), "drape");
+  EXPECT_EQ(sim.stage(), Stage::Drape);
   EXPECT_GT(sim.time(), 0.0);  // from the preview's state, not the placed garment
   EXPECT_EQ(sim.resumeState().previewPositions.rows(), sim.garment().vertexCount());
   EXPECT_TRUE(sim.previewFailure().empty()) << sim.previewFailure();
@@ -270,7 +201,7 @@ TEST(PreviewRetry, OverstretchedHandOverStartsOverWithTargetsFreeOnce) {
     Simulation direct(defaultTshirt("jersey_knit", o));
     direct.step();
     EXPECT_EQ(direct.previewRestarts(), 0) << setting.first;
-    EXPECT_EQ(direct.stage(), "drape") << setting.first;
+    EXPECT_EQ(direct.stage(), Stage::Drape) << setting.first;
     EXPECT_GT(direct.time(), 0.0) << setting.first;
   }
 }
@@ -283,7 +214,7 @@ TEST(PipelineSoftening, FullPipelineSoftensAStiffFabricFromTheStartAndHandsOverS
   // The same fabric's preview run alone keeps the fabric's own stiffness.
   EXPECT_EQ(Simulation(defaultTshirt("cotton_shirting", {{"solver.stage", "preview"}})).previewCourantLimit(), 0.0);
   double h = 0.0;
-  while (cotton.stage() == "preview") h = cotton.step().h;
+  while (cotton.stage() == Stage::Preview) h = cotton.step().h;
   EXPECT_TRUE(cotton.previewFailure().empty()) << cotton.previewFailure();
   EXPECT_EQ(cotton.previewRestarts(), 0);
   // Handed over at softened_max_time (not settled that soon: its quasi-static start lasts 0.05 s, the rest window
@@ -295,8 +226,8 @@ TEST(PipelineSoftening, FullPipelineSoftensAStiffFabricFromTheStartAndHandsOverS
   // Jersey knit (Courant number about 4.7) is below the limit: not softened, so no early hand-over.
   Simulation jersey(defaultTshirt("jersey_knit", {{"solver.stage", "full"}}));
   ASSERT_LT(jersey.previewCourantNumber(), 5.0);
-  while (jersey.stage() == "preview" && jersey.time() < 2.0 * softenedMaxTime) jersey.step();
-  EXPECT_EQ(jersey.stage(), "preview");
+  while (jersey.stage() == Stage::Preview && jersey.time() < 2.0 * softenedMaxTime) jersey.step();
+  EXPECT_EQ(jersey.stage(), Stage::Preview);
 }
 
 TEST(PipelineSoftening, TheSofterOfTheTwoLimitsHolds) {

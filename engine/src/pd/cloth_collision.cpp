@@ -10,7 +10,7 @@
 
 #include "drape/collision/aabb.h"
 #include "drape/collision/distance.h"
-#include "drape/collision/self_contact.h"
+#include "drape/collision/contact_merged_vertices.h"
 #include "drape/core/disjoint_sets.h"
 
 namespace drape::pd {

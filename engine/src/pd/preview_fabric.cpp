@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "drape/collision/avatar_feature_contact.h"
+#include "drape/collision/avatar_features.h"
 
 namespace drape::pd {
 namespace {

@@ -92,6 +92,36 @@ std::string canonical(const SettingSpec& spec, const std::string& value, const s
 
 }  // namespace
 
+const char* settingGroupName(SettingGroup group) {
+  switch (group) {
+    case SettingGroup::Scene: return "scene";
+    case SettingGroup::Mesh: return "mesh";
+    case SettingGroup::Fabric: return "fabric";
+    case SettingGroup::Contact: return "contact";
+    case SettingGroup::Run: return "run";
+    case SettingGroup::Preview: return "preview";
+    case SettingGroup::Drape: return "drape";
+    case SettingGroup::Quality: return "quality";
+    case SettingGroup::Output: return "output";
+  }
+  return "";
+}
+
+const char* settingGroupTitle(SettingGroup group) {
+  switch (group) {
+    case SettingGroup::Scene: return "the pattern, the body, where the garment starts, gravity";
+    case SettingGroup::Mesh: return "how the panels are meshed and sewn";
+    case SettingGroup::Fabric: return "the fabric preset and overrides of its properties";
+    case SettingGroup::Contact: return "contact with the body and the cloth itself, friction";
+    case SettingGroup::Run: return "what a run simulates and for how long";
+    case SettingGroup::Preview: return "the fast preview (PD-DD, or the quasi-Newton preview)";
+    case SettingGroup::Drape: return "the accurate drape (Backward-Euler Newton, its PCG, damping, stitches, pins)";
+    case SettingGroup::Quality: return "the verdict on every simulated result";
+    case SettingGroup::Output: return "renders: the camera";
+  }
+  return "";
+}
+
 Settings::Settings() {
   for (const auto& spec : specs())
     if (!spec.defaultValue.empty()) m_values[spec.key] = spec.defaultValue;
@@ -119,10 +149,30 @@ const std::map<std::string, std::string>& retiredSettings() {
   return retired;
 }
 
+// Switches between implementations of one computation that agree to round-off or to the solver's tolerance: no
+// longer scene settings; the benchmarks that measure them set them (Scene::implementation).
+const std::map<std::string, std::string>& implementationSwitches() {
+  static const std::map<std::string, std::string> switches = {
+      {"solver.newton.block_map", "map"},  {"solver.newton.fold_dissipation", "fold"},
+      {"solver.newton.batched_gradients", "batch"}, {"solver.cg.fused_kernels", "fused"},
+      {"solver.newton.closed_form_bending", "bending"}, {"solver.newton.parallel_assembly", "parallel"},
+      {"solver.newton.reorder_dofs", "reorder"}, {"solver.preview.global_solver", ""}};
+  return switches;
+}
+
 void Settings::set(const std::string& key, const std::string& value, const std::string& context) {
   const SettingSpec* spec = find(key);
   if (!spec && retiredSettings().count(key))
     throw InputError(context + ": the setting '" + key + "' is replaced by " + retiredSettings().at(key));
+  if (!spec && implementationSwitches().count(key)) {
+    const std::string& feature = implementationSwitches().at(key);
+    throw InputError(context + ": '" + key + "' is no longer a setting: it switches between implementations that " +
+                     "give the same drape, and its benchmark measures it (" +
+                     (feature.empty() ? std::string("the domain-decomposed solve against monolithic CHOLMOD, "
+                                                    "docs/BENCHMARKS.md")
+                                      : "build/bench/drape_newton_bench --configs on-" + feature) +
+                     ")");
+  }
   if (!spec) throw InputError(context + ": unknown setting '" + key + "'; valid settings: " + validKeys());
   if (value.empty() && spec->defaultValue.empty()) {
     m_values.erase(spec->key);  // back to unset
@@ -167,6 +217,16 @@ Eigen::Vector3d Settings::vector3(std::string_view key) const {
 }
 
 const std::string& Settings::text(std::string_view key) const { return raw(key); }
+
+int Settings::choiceIndex(std::string_view key) const {
+  const SettingSpec* spec = find(key);
+  if (!spec || spec->type != SettingType::Choice)
+    throw std::logic_error("Settings: " + std::string(key) + " is not a choice");
+  const std::string& value = raw(key);
+  for (size_t i = 0; i < spec->choices.size(); ++i)
+    if (spec->choices[i] == value) return static_cast<int>(i);
+  throw std::logic_error("Settings: " + std::string(key) + " holds no choice");
+}
 
 std::map<std::string, std::string> Settings::changed() const {
   std::map<std::string, std::string> out;

@@ -80,28 +80,25 @@ newton::NewtonSettings newtonSettingsFrom(const Scene& scene) {
   n.linear.maxIterations = s.integer("solver.cg.max_iterations");
   n.linear.mixedPrecision = s.flag("solver.cg.mixed_precision");
   n.linear.warmStart = s.flag("solver.cg.warm_start");
-  n.linear.fusedKernels = s.flag("solver.cg.fused_kernels");
+  n.linear.fusedKernels = scene.implementation.fusedKernels;
   n.coarseAggregate = static_cast<int>(s.integer("solver.cg.coarse_aggregate"));
   n.coarseFromIterations = static_cast<int>(s.integer("solver.cg.coarse_from_iterations"));
   n.coarseLagged = s.flag("solver.cg.coarse_lagged");
   n.coupledThreshold = s.number("solver.cg.coupled_groups");
   n.coupledFromIterations = static_cast<int>(s.integer("solver.cg.coupled_from_iterations"));
-  n.reorderDofs = s.flag("solver.newton.reorder_dofs");
-  n.closedFormBending = s.flag("solver.newton.closed_form_bending");
-  n.cachedBlockMap = s.flag("solver.newton.block_map");
-  n.parallelAssembly = s.flag("solver.newton.parallel_assembly");
-  n.foldDissipation = s.flag("solver.newton.fold_dissipation");
-  n.batchedGradients = s.flag("solver.newton.batched_gradients");
+  n.reorderDofs = scene.implementation.reorderDofs;
+  n.closedFormBending = scene.implementation.closedFormBending;
+  n.cachedBlockMap = scene.implementation.blockMap;
+  n.parallelAssembly = scene.implementation.parallelAssembly;
+  n.foldDissipation = scene.implementation.foldDissipation;
+  n.batchedGradients = scene.implementation.batchedGradients;
   n.hessianReuseSteps = s.integer("solver.newton.hessian_reuse_steps");
-  const std::string& pre = s.text("solver.cg.preconditioner");
-  if (pre == "cholmod_direct") {
+  // The choices of solver.cg.preconditioner are newton::Preconditioner's, then cholmod_direct (no PCG).
+  if (s.text("solver.cg.preconditioner") == "cholmod_direct") {
     n.linear.kind = newton::LinearSolverKind::Cholmod;
   } else {
     n.linear.kind = newton::LinearSolverKind::Pcg;
-    n.linear.preconditioner = pre == "none"                  ? newton::Preconditioner::None
-                              : pre == "diagonal"            ? newton::Preconditioner::Diagonal
-                              : pre == "incomplete_cholesky" ? newton::Preconditioner::IncompleteCholesky
-                                                             : newton::Preconditioner::BlockJacobi;
+    n.linear.preconditioner = s.choice<newton::Preconditioner>("solver.cg.preconditioner");
   }
   n.alpha = s.number("solver.damping.air");
   // The fabric's damping is the stretch dissipation beta_s (assets/fabrics/README.md); with panels of several
@@ -124,27 +121,19 @@ pd::PreviewSettings previewSettingsFrom(const Scene& scene) {
   p.maxHalvings = s.integer("solver.preview.max_halvings");
   p.growAfterSteps = s.integer("solver.preview.grow_after_steps");
   p.domains = s.integer("solver.preview.domains");
-  p.localStep = s.text("solver.preview.local_step") == "jacobi" ? pd::LocalStepKind::Jacobi : pd::LocalStepKind::GaussSeidel;
-  p.globalSolver = s.text("solver.preview.global_solver") == "monolithic" ? pd::GlobalSolverKind::Monolithic
-                                                                          : pd::GlobalSolverKind::DomainDecomposed;
-  const std::string& contactSolve = s.text("solver.preview.contact_solve");
-  p.contactSolve = contactSolve == "pcg"             ? pd::ContactSolveKind::Pcg
-                   : contactSolve == "dual_then_pcg" ? pd::ContactSolveKind::DualThenPcg
-                   : contactSolve == "factor"        ? pd::ContactSolveKind::Factor
-                                                     : pd::ContactSolveKind::DualCgThenPcg;
+  p.localStep = s.choice<pd::LocalStepKind>("solver.preview.local_step");
+  p.globalSolver = scene.implementation.monolithicGlobalSolve ? pd::GlobalSolverKind::Monolithic
+                                                              : pd::GlobalSolverKind::DomainDecomposed;
+  p.contactSolve = s.choice<pd::ContactSolveKind>("solver.preview.contact_solve");
   p.pcgTolerance = s.number("solver.preview.pcg_tolerance");
   p.holdContactTargets = s.flag("solver.preview.hold_contact_targets");
   p.holdTargetsStep = s.number("solver.preview.hold_targets_step");
   p.sewnGap = s.number("solver.preview.sewn_gap");
   p.sewnTime = s.number("solver.preview.sewn_time");
-  p.sewnLocalStep = s.text("solver.preview.sewn_local_step") == "gauss_seidel" ? pd::LocalStepKind::GaussSeidel
-                                                                               : pd::LocalStepKind::Jacobi;
-  p.contactTargets = s.text("solver.preview.contact_targets") == "step_planes" ? pd::ContactTargetKind::StepPlanes
-                                                                               : pd::ContactTargetKind::Reproject;
-  p.frictionLoad = s.text("solver.preview.friction_load") == "collision_free" ? pd::FrictionLoadKind::CollisionFree
-                                                                               : pd::FrictionLoadKind::Inertial;
-  p.shearModel = s.text("solver.preview.shear_model") == "stretch" ? pd::ShearModelKind::Stretch
-                                                                  : pd::ShearModelKind::Fabric;
+  p.sewnLocalStep = s.choice<pd::LocalStepKind>("solver.preview.sewn_local_step");
+  p.contactTargets = s.choice<pd::ContactTargetKind>("solver.preview.contact_targets");
+  p.frictionLoad = s.choice<pd::FrictionLoadKind>("solver.preview.friction_load");
+  p.shearModel = s.choice<pd::ShearModelKind>("solver.preview.shear_model");
   p.relaxationTime = s.number("solver.preview.relaxation_time");
   p.courantLimit = s.number("solver.preview.courant_limit");
   p.contactThickness = contactThickness(scene);

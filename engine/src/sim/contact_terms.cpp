@@ -4,8 +4,8 @@
 
 #include <algorithm>
 
-#include "drape/collision/avatar_feature_contact.h"
-#include "drape/collision/contact_factory.h"
+#include "drape/newton/contact/avatar_feature_contact.h"
+#include "drape/newton/contact/contact_factory.h"
 #include "sim/cloth_model_builder.h"
 
 namespace drape {
@@ -15,7 +15,7 @@ ContactTerms makeContactTerms(const Scene& scene, const Garment& garment,
   ContactTerms terms;
   terms.thickness = contactThickness(scene);
   terms.collider = std::move(collider);
-  collision::ContactSetup setup;
+  newton::ContactSetup setup;
   setup.avatar = terms.collider;
   setup.avatarContact.stiffness = scene.settings.number("contact.stiffness");
   setup.avatarContact.thickness = terms.thickness;
@@ -38,12 +38,12 @@ ContactTerms makeContactTerms(const Scene& scene, const Garment& garment,
   std::vector<model::EdgeStitch> edgeStitches;
   edgeStitches.reserve(garment.edgeStitches.size());
   for (const GarmentEdgeStitch& e : garment.edgeStitches) edgeStitches.push_back({e.vertex, e.a, e.b, e.t});
-  terms.energies = collision::makeContactEnergies(setup, garment.vertexCount(), garment.triangles, garment.stitchPairs,
+  terms.energies = newton::makeContactEnergies(setup, garment.vertexCount(), garment.triangles, garment.stitchPairs,
                                                   edgeStitches);
   for (const auto& energy : terms.energies) {
-    if (const auto* avatar = dynamic_cast<const collision::AvatarContactEnergy*>(energy.get()))
+    if (const auto* avatar = dynamic_cast<const newton::AvatarContactEnergy*>(energy.get()))
       terms.avatarEnergy = avatar;
-    if (const auto* features = dynamic_cast<const collision::AvatarFeatureContactEnergy*>(energy.get()))
+    if (const auto* features = dynamic_cast<const newton::AvatarFeatureContactEnergy*>(energy.get()))
       terms.featureEnergy = features;
   }
   return terms;

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "drape/collision/avatar_collider.h"
-#include "drape/collision/avatar_contact.h"
-#include "drape/collision/avatar_feature_contact.h"
+#include "drape/newton/contact/avatar_contact.h"
+#include "drape/newton/contact/avatar_feature_contact.h"
 #include "drape/garment/garment.h"
 #include "drape/newton/energy.h"
 #include "drape/scene/scene.h"
@@ -19,9 +19,9 @@ struct ContactTerms {
   double thickness = 0.0;                                     // metres
   std::vector<std::unique_ptr<newton::Energy>> energies;      // handed over to the solver
   // The avatar contact energy among them (owned by the solver once handed over), null without a collider.
-  const collision::AvatarContactEnergy* avatarEnergy = nullptr;
+  const newton::AvatarContactEnergy* avatarEnergy = nullptr;
   // The avatar feature contact among them, null unless contact.avatar_features found features.
-  const collision::AvatarFeatureContactEnergy* featureEnergy = nullptr;
+  const newton::AvatarFeatureContactEnergy* featureEnergy = nullptr;
 };
 
 // collider: the scene's merged collider (null when it has none), shared with the preview solver.

@@ -67,25 +67,26 @@ void liftOutOf(const collision::AvatarCollider& collider, double thickness, doub
 double previewCourantLimitOf(const Scene& scene) {
   double limit = scene.settings.number("solver.preview.courant_limit");
   const double pipeline = scene.settings.number("solver.preview.pipeline_courant_limit");
-  if (scene.settings.text("solver.stage") == "full" && pipeline > 0.0 && (limit <= 0.0 || pipeline < limit))
+  if (scene.settings.stagePlan() == StagePlan::Full && pipeline > 0.0 && (limit <= 0.0 || pipeline < limit))
     limit = pipeline;
   return limit;
 }
 
-ResumeState startStateAt(const std::string& stage, const Eigen::MatrixX3d& positions) {
+ResumeState startStateAt(StagePlan plan, const Eigen::MatrixX3d& positions) {
   ResumeState state;
   state.vertexCount = static_cast<int>(positions.rows());
   state.positions = positions;
   state.velocities = Eigen::MatrixX3d::Zero(positions.rows(), 3);
-  state.stage = stage == "drape" ? "drape" : "preview";
-  if (state.stage == "drape") state.previewPositions = positions;
+  state.stage = plan == StagePlan::Drape ? Stage::Drape : Stage::Preview;
+  if (state.stage == Stage::Drape) state.previewPositions = positions;
   return state;
 }
 
 std::unique_ptr<Simulation> simulationFromStateFile(Scene scene, const std::filesystem::path& file) {
   const GarmentState state = readGarmentState(file);
   const std::string stage = scene.settings.text("solver.stage");
-  auto simulation = std::make_unique<Simulation>(std::move(scene), startStateAt(stage, state.positions));
+  const StagePlan plan = scene.settings.stagePlan();
+  auto simulation = std::make_unique<Simulation>(std::move(scene), startStateAt(plan, state.positions));
   checkGarmentState(state, simulation->garment(), file);
   if (!simulation->resumed()) {
     const std::string why = simulation->previewFailure();
@@ -114,14 +115,14 @@ void Simulation::build(const ResumeState* from) {
   m_courantNumber = pd::courantNumber(m_solver->model, m_scene.settings.number("solver.preview.time_step"));
   if (m_colliderMesh.triangleCount() > 0)
     m_solver->collider = std::make_shared<const collision::AvatarCollider>(m_colliderMesh);
-  const std::string& stage = m_scene.settings.text("solver.stage");
-  const bool runsPreview = stage == "preview" || stage == "full";
+  const StagePlan plan = m_scene.settings.stagePlan();
+  const bool runsPreview = plan == StagePlan::Preview || plan == StagePlan::Full;
   if (from && from->vertexCount != m_garment.vertexCount()) from = nullptr;  // re-meshed: start over
   if (from && from->assembling) from = nullptr;  // not sewn yet: the assembly starts over
   m_resumed = from != nullptr;
-  if (runsPreview && quasiNewtonMethod() && (!from || from->stage == "preview")) {
+  if (runsPreview && quasiNewtonMethod() && (!from || from->stage == Stage::Preview)) {
     startQuasiNewtonPreview(from);
-  } else if (from && from->stage == "preview" && runsPreview) {
+  } else if (from && from->stage == Stage::Preview && runsPreview) {
     model::ClothModel model = m_solver->model;
     for (int v = 0; v < m_garment.vertexCount(); ++v) {
       model.positions.segment<3>(3 * v) = from->positions.row(v).transpose();
@@ -137,7 +138,7 @@ void Simulation::build(const ResumeState* from) {
       m_courantLimit = from->previewCourantLimit;
     m_targetsFreed = from->previewTargetsFreed;
     m_solver->preview = std::make_unique<pd::PreviewSolver>(model, previewSettings(), m_solver->collider);
-  } else if (from && from->stage == "drape") {
+  } else if (from && from->stage == Stage::Drape) {
     m_resumed = from->previewPositions.rows() > 0;  // else the drape had started from the placed garment
     if (m_resumed) {
       const Eigen::VectorXd stretch = triangleStretch(m_garment.rest, from->previewPositions, m_garment.triangles);
@@ -242,7 +243,7 @@ void Simulation::finishAssembly() {
   }
   m_solver->assembly.reset();
   const bool timeUp = start >= previewMaxTime() - 1e-12;
-  if (m_scene.settings.text("solver.stage") == "full" && timeUp) {
+  if (m_scene.settings.stagePlan() == StagePlan::Full && timeUp) {
     startDrape(x, start);
     return;
   }
@@ -294,7 +295,7 @@ constexpr double kSoftenedCourant = 5.0;
 
 double Simulation::previewMaxTime() const {
   const double maxTime = m_scene.settings.number("solver.preview.max_time");
-  if (m_scene.settings.text("solver.stage") != "full" || m_courantLimit <= 0.0 || m_courantNumber <= m_courantLimit)
+  if (m_scene.settings.stagePlan() != StagePlan::Full || m_courantLimit <= 0.0 || m_courantNumber <= m_courantLimit)
     return maxTime;
   return std::min(maxTime, m_scene.settings.number("solver.preview.softened_max_time"));
 }
@@ -381,7 +382,7 @@ void Simulation::failPreviewIfTorn(const StepReport& report, const Eigen::Matrix
   // While the preview starts quasi-statically, the seams' first closing may overshoot (the trousers' hems at 1/1920
   // s: 518 %, back to 45 % within 6 ms); a tear is what is left after it, or an overshoot that stays (stuckOvershoot).
   if (report.time <= m_scene.settings.number("solver.preview.relaxation_time") && !stuckOvershoot(report)) return;
-  const bool previewAlone = m_scene.settings.text("solver.stage") == "preview";
+  const bool previewAlone = m_scene.settings.stagePlan() == StagePlan::Preview;
   if (previewAlone && m_previewWrong) return;  // said once, at the first torn step
   const double retry = retryCourantLimit();
   TearOutcome then = retry > 0.0       ? TearOutcome::PreviewStartsOver
@@ -461,8 +462,8 @@ ResumeState Simulation::resumeState() const {
   return r;
 }
 
-std::string Simulation::stage() const {
-  return m_solver->newton && !m_solver->quasiNewtonPreview ? "drape" : "preview";
+Stage Simulation::stage() const {
+  return m_solver->newton && !m_solver->quasiNewtonPreview ? Stage::Drape : Stage::Preview;
 }
 
 bool Simulation::assembling() const { return m_solver->assembly != nullptr; }
@@ -510,7 +511,7 @@ void Simulation::clearCancel() {
 bool Simulation::previewSettled(std::vector<double> speeds, bool waiting) {
   // Settled: vertex speeds below the threshold for a 0.1 s window (as the drape's early stop). A preview that hands
   // over to the drape uses the looser hand-off speed: the drape settles the rest.
-  const bool previewOnly = m_scene.settings.text("solver.stage") == "preview";
+  const bool previewOnly = m_scene.settings.stagePlan() == StagePlan::Preview;
   const double restSpeed = m_scene.settings.number(previewOnly ? "solver.preview.rest_speed"
                                                                : "solver.preview.handoff_speed");
   if (!waiting && percentile(std::move(speeds), 0.99) < restSpeed && m_dragVertex < 0) {
@@ -524,12 +525,12 @@ bool Simulation::previewSettled(std::vector<double> speeds, bool waiting) {
 bool Simulation::finished() const { return !endReason().empty(); }
 
 std::string Simulation::endReason() const {
-  const bool previewOnly = m_scene.settings.text("solver.stage") == "preview";
+  const bool previewOnly = m_scene.settings.stagePlan() == StagePlan::Preview;
   // A preview that hands over to the drape is never at rest itself: the drape follows.
-  if (m_atRest && (stage() == "drape" || previewOnly)) return "AtRest";
+  if (m_atRest && (stage() == Stage::Drape || previewOnly)) return "AtRest";
   // A drape started from a preview's state (the GUI's Drape after its Preview) has solver.max_sim_time of its own: a
   // preview that ran to the limit would leave it none.
-  const double start = m_drapeOwnBudget && stage() == "drape" ? m_solver->previewTime : 0.0;
+  const double start = m_drapeOwnBudget && stage() == Stage::Drape ? m_solver->previewTime : 0.0;
   if (time() - start >= m_scene.settings.number("solver.max_sim_time") - 1e-12) return "MaxSimTime";
   if (m_steps >= m_scene.settings.integer("solver.max_steps")) return "MaxSteps";
   return "";
@@ -557,7 +558,7 @@ StepReport Simulation::step() {
     const Eigen::VectorXd before = preview.positions();
     const pd::PreviewReport r = preview.step();
     report.status = toStepStatus(r.status);
-    report.stage = "preview";
+    report.stage = Stage::Preview;
     report.h = r.timeStep;
     report.iterations = r.iterations;
     report.cgIterations = r.pcgIterations;
@@ -583,7 +584,7 @@ StepReport Simulation::step() {
     // A relaxing preview moves at most g h per step whatever its forces: its rest window opens after the relaxation.
     const bool relaxing = time() < m_scene.settings.number("solver.preview.relaxation_time") - 1e-12;
     const bool settled = previewSettled(std::move(speeds), assembling || relaxing);
-    const bool previewOnly = m_scene.settings.text("solver.stage") == "preview";
+    const bool previewOnly = m_scene.settings.stagePlan() == StagePlan::Preview;
     // The coarse assembly has max_time from the start; the garment's own mesh has it again from where it took over
     // (or from a resumed state): it has its own settling to do.
     const double previewStart = assembling ? 0.0 : m_solver->previewOffset;
@@ -604,7 +605,7 @@ StepReport Simulation::step() {
     ++m_steps;
     m_atRest = r.atRest;
     report.status = toStepStatus(r.status);
-    report.stage = "drape";
+    report.stage = Stage::Drape;
     report.time = m_solver->newtonOffset + r.time;
     report.h = r.h;
     report.iterations = r.newtonIterations;
@@ -626,7 +627,7 @@ StepReport Simulation::step() {
   const Eigen::MatrixX3d x = positions();
   const Eigen::VectorXd stretch = triangleStretch(m_garment.rest, x, m_garment.triangles);
   report.maxStrain = stretch.size() ? stretch.maxCoeff(&report.maxStrainTriangle) : 0.0;
-  if (report.stage == "preview" && projective) failPreviewIfTorn(report, x);
+  if (report.stage == Stage::Preview && projective) failPreviewIfTorn(report, x);
   // The projective preview's tears start it over or give it up (failPreviewIfTorn); any other exploded state ends the
   // run Diverged with the state before the step.
   const bool restarted = m_previewRestartReasons.size() != restartsBefore || m_previewFailure != failureBefore;
@@ -663,7 +664,7 @@ Snapshot Simulation::snapshot() const {
     s.vertexContact = contactMask(m_solver->contact, m_solver->newton->positions());
   }
   s.time = time();
-  s.stage = m_atRest ? "done" : (m_steps == 0 && !m_resumed ? "placed" : stage());
+  s.stage = m_atRest ? Stage::Done : (m_steps == 0 && !m_resumed ? Stage::Placed : stage());
   return s;
 }
 

@@ -50,7 +50,7 @@ void Simulation::startQuasiNewtonPreview(const ResumeState* from) {
   m_solver->newtonOffset = start;
   m_solver->previewOffset = start;
   m_solver->contact = makeContactTerms(m_scene, m_garment, m_solver->collider);
-  const pd::GlobalSolverKind kind = s.text("solver.preview.global_solver") == "monolithic"
+  const pd::GlobalSolverKind kind = m_scene.implementation.monolithicGlobalSolve
                                         ? pd::GlobalSolverKind::Monolithic
                                         : pd::GlobalSolverKind::DomainDecomposed;
   m_solver->preconditioner = std::make_shared<pd::PdPreconditioner>(
@@ -91,7 +91,7 @@ StepReport Simulation::stepQuasiNewtonPreview() {
     case newton::NewtonStatus::Diverged: report.status = StepStatus::Diverged; break;
     case newton::NewtonStatus::Cancelled: report.status = StepStatus::Cancelled; break;
   }
-  report.stage = "preview";
+  report.stage = Stage::Preview;
   report.quasiNewton = true;
   report.time = time();
   report.h = r.h;
@@ -111,7 +111,7 @@ StepReport Simulation::stepQuasiNewtonPreview() {
     for (size_t i = 0; i < speeds.size(); ++i)
       speeds[i] = (solver.positions().segment<3>(3 * i) - before.segment<3>(3 * i)).norm() / r.h;
   const bool settled = previewSettled(std::move(speeds), r.relaxing || !stepped);
-  const bool previewOnly = m_scene.settings.text("solver.stage") == "preview";
+  const bool previewOnly = m_scene.settings.stagePlan() == StagePlan::Preview;
   const bool timeUp = time() - m_solver->previewOffset >= m_scene.settings.number("solver.preview.max_time") - 1e-12;
   if (previewOnly) {  // the drape's own early stop: the same model comes to rest by the same test
     m_atRest = solver.atRest();

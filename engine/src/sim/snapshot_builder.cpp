@@ -37,7 +37,7 @@ Snapshot makeSnapshot(const Scene& scene, const Garment& garment, const Eigen::M
   s.triangleStrain = triangleStretch(garment.rest, positions, garment.triangles);
   s.avatar = mergedColliders(scene);
   s.contactThickness = contactThickness(scene);
-  s.stage = "placed";
+  s.stage = Stage::Placed;
   return s;
 }
 

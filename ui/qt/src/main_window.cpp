@@ -256,8 +256,8 @@ void MainWindow::connectDocument() {
     if (simulation->resumed()) {
       // An edit of the running scene (fabric, pin, setting): continue from the current state.
       log(tr("info"), tr("The %1 continues from %2 (t = %3 s)")
-                          .arg(QString::fromStdString(simulation->stage()))
-                          .arg(simulation->stage() == "drape" ? tr("the last preview state") : tr("its current state"))
+                          .arg(stageName(simulation->stage()))
+                          .arg(simulation->stage() == Stage::Drape ? tr("the last preview state") : tr("its current state"))
                           .arg(simulation->time(), 0, 'f', 3));
       m_controller->continueWith(std::move(simulation));
     } else {
@@ -285,7 +285,7 @@ void MainWindow::connectDocument() {
   connect(m_controller, &SimulationController::snapshotReady, this, [this](std::shared_ptr<const Snapshot> s) {
     m_snapshot = std::move(s);
     m_viewport->setSnapshot(*m_snapshot);
-    m_statisticsPanel->setStage(QString::fromStdString(m_snapshot->stage));
+    m_statisticsPanel->setStage(stageName(m_snapshot->stage));
     m_status->setText(tr("%1 | t = %2 s | %3 vertices, %4 triangles")
                           .arg(QString::fromUtf8(toString(m_runState)))
                           .arg(m_snapshot->time, 0, 'f', 3)

@@ -91,7 +91,7 @@ SceneDocument::Built SceneDocument::build(const SceneState& state) const {
   if (resume) {
     // The simulation continues in the stage it was in; the document's scene (what Save writes) keeps its own.
     Scene running = *built.scene;
-    running.settings.set("solver.stage", resume->stage, "simulation");
+    running.settings.set("solver.stage", stageName(resume->stage), "simulation");
     built.simulation = std::make_shared<Simulation>(std::move(running), *resume);
   } else {
     built.simulation = std::make_shared<Simulation>(*built.scene);
@@ -224,8 +224,8 @@ bool SceneDocument::loadGarmentState(const std::filesystem::path& file) {
   std::shared_ptr<Simulation> simulation;
   try {
     Scene running = *m_scene;
-    const std::string stage = running.settings.text("solver.stage");
-    running.settings.set("solver.stage", stage == "drape" || stage == "preview" ? stage : "full", "simulation");
+    const StagePlan plan = running.settings.stagePlan();
+    if (plan != StagePlan::Drape && plan != StagePlan::Preview) running.settings.set("solver.stage", "full", "simulation");
     simulation = simulationFromStateFile(std::move(running), file);
   } catch (const InputError& e) {
     emit errorOccurred(QString::fromStdString(e.what()));

@@ -6,7 +6,7 @@
 namespace drape::qt {
 namespace {
 
-enum Column { KeyColumn, ValueColumn, UnitColumn };
+enum Column { KeyColumn, ValueColumn, UnitColumn, GroupColumn };
 
 QString describeRange(const SettingSpec& spec) {
   QString text = QString::fromStdString(spec.description);
@@ -23,13 +23,14 @@ QString describeRange(const SettingSpec& spec) {
 
 SettingsTable::SettingsTable(QWidget* parent) : QTableWidget(parent) {
   const auto& specs = Settings::specs();
-  setColumnCount(3);
+  setColumnCount(4);
   setRowCount(static_cast<int>(specs.size()));
-  setHorizontalHeaderLabels({tr("Setting"), tr("Value"), tr("Unit")});
+  setHorizontalHeaderLabels({tr("Setting"), tr("Value"), tr("Unit"), tr("Group")});
   verticalHeader()->hide();
   horizontalHeader()->setSectionResizeMode(KeyColumn, QHeaderView::ResizeToContents);
   horizontalHeader()->setSectionResizeMode(ValueColumn, QHeaderView::Stretch);
   horizontalHeader()->setSectionResizeMode(UnitColumn, QHeaderView::ResizeToContents);
+  horizontalHeader()->setSectionResizeMode(GroupColumn, QHeaderView::ResizeToContents);
   setAlternatingRowColors(true);
   setSelectionMode(QAbstractItemView::SingleSelection);
   for (int row = 0; row < static_cast<int>(specs.size()); ++row) {
@@ -41,6 +42,10 @@ SettingsTable::SettingsTable(QWidget* parent) : QTableWidget(parent) {
     auto* unit = new QTableWidgetItem(QString::fromStdString(spec.unit));
     unit->setFlags(unit->flags() & ~Qt::ItemIsEditable);
     setItem(row, UnitColumn, unit);
+    auto* group = new QTableWidgetItem(QString::fromUtf8(settingGroupName(spec.group)));
+    group->setFlags(group->flags() & ~Qt::ItemIsEditable);
+    group->setToolTip(QString::fromUtf8(settingGroupTitle(spec.group)));
+    setItem(row, GroupColumn, group);
     auto* value = new QTableWidgetItem;
     value->setToolTip(describeRange(spec));
     setItem(row, ValueColumn, value);

@@ -65,7 +65,7 @@ void SimulationWorker::updateStage() {
   QString stage;
   if (simulation)
     stage = simulation->steps() == 0 && !simulation->resumed() ? QStringLiteral("placed")
-                                                               : QString::fromStdString(simulation->stage());
+                                                               : QString(stageName(simulation->stage()));
   {
     std::lock_guard<std::mutex> lock(m_mutex);
     if (stage == m_stage) return;
@@ -170,7 +170,7 @@ void SimulationWorker::startPreview(int generation) {
   if (!simulation || m_running.load() || cancelledSince(generation)) return;
   const QString now = stage();
   if (now == "drape") return;  // the drape has started: Reset goes back to the placed garment
-  if (simulation->scene().settings.text("solver.stage") != "preview") {
+  if (simulation->scene().settings.stagePlan() != StagePlan::Preview) {
     if (now == "placed") {
       if (!rebuild("preview", nullptr)) return;
     } else {  // a "full" scene still in its preview: continue it as a preview only
@@ -184,13 +184,13 @@ void SimulationWorker::startPreview(int generation) {
 void SimulationWorker::startDrape(int generation) {
   auto simulation = current();
   if (!simulation || m_running.load() || cancelledSince(generation)) return;
-  if (simulation->stage() == "preview") {
+  if (simulation->stage() == Stage::Preview) {
     if (stage() == "placed") {
       if (!rebuild("drape", nullptr)) return;
     } else {
       // The drape starts from the preview state (the engine resets the velocities).
       ResumeState from = simulation->resumeState();
-      from.stage = "drape";
+      from.stage = Stage::Drape;
       from.previewPositions = from.positions;
       from.previewTime = from.time;
       if (!rebuild("drape", &from)) return;
@@ -268,7 +268,7 @@ void SimulationWorker::stepOnce() {
     // Why, when the garment exploded (Simulation::divergedReason); else the solver found no step that converges.
     const std::string& why = simulation->divergedReason();
     emit errorOccurred(QStringLiteral("The %1 diverged at t = %2 s (step %3)%4; the last good state is kept.")
-                           .arg(QString::fromStdString(report.stage))
+                           .arg(stageName(report.stage))
                            .arg(report.time, 0, 'g', 4)
                            .arg(simulation->steps())
                            .arg(why.empty() ? QString() : QStringLiteral(": ") + QString::fromStdString(why)));

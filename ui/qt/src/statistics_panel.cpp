@@ -222,7 +222,7 @@ void StatisticsPanel::flush() {
     }
   }
   const StepReport& report = reports.back();
-  setFigure(tr("stage"), QString::fromStdString(report.stage) + (report.atRest ? tr(" (at rest)") : QString()));
+  setFigure(tr("stage"), QString(stageName(report.stage)) + (report.atRest ? tr(" (at rest)") : QString()));
   setFigure(tr("time"), tr("%1 s (step %2)").arg(report.time, 0, 'f', 4).arg(m_steps));
   setFigure(tr("step time"),
             tr("%1 ms (h = %2 ms)").arg(report.wallTime * 1e3, 0, 'f', 1).arg(report.h * 1e3, 0, 'g', 3));
@@ -231,7 +231,7 @@ void StatisticsPanel::flush() {
   if (report.quasiNewton)
     setFigure(tr("iterations"),
               tr("%1 L-BFGS, %2 evaluations").arg(report.iterations).arg(report.lineSearchEvaluations));
-  else if (report.stage == "preview")
+  else if (report.stage == Stage::Preview)
     setFigure(tr("iterations"), tr("%1 local-global, %2 CG").arg(report.iterations).arg(report.cgIterations));
   else
     setFigure(tr("iterations"), tr("%1 Newton, %2 CG").arg(report.iterations).arg(report.cgIterations));

@@ -62,8 +62,7 @@ Image OffscreenRenderer::contactSheet(const Snapshot& snapshot, const RenderOpti
   if (labels) {
     const int x = (tile % kColumns) * w + 6 * scale, y = (tile / kColumns) * h + 6 * scale;
     drawText(sheet, x, y, std::string("MODE: ") + std::string(displayModeName(options.mode)), scale, ink);
-    if (!snapshot.stage.empty())
-      drawText(sheet, x, y + 12 * scale, "STAGE: " + snapshot.stage, scale, ink);
+    drawText(sheet, x, y + 12 * scale, std::string("STAGE: ") + stageName(snapshot.stage), scale, ink);
     const std::string count = snapshot.triangles.rows() > 0
                                   ? std::to_string(snapshot.triangles.rows()) + " TRIANGLES"
                                   : std::to_string(snapshot.avatar.triangleCount()) + " BODY TRIANGLES";

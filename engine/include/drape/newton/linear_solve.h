@@ -9,6 +9,7 @@ namespace drape::newton {
 class CoarseSpace;
 class CoupledGroups;
 
+// In the order of the choices of solver.cg.preconditioner (Settings::choice), which adds cholmod_direct.
 enum class Preconditioner { None, Diagonal, BlockJacobi, IncompleteCholesky };
 enum class LinearSolverKind { Pcg, Cholmod };
 

@@ -6,6 +6,8 @@
 
 namespace drape::pd {
 
+// The enums that settings choose (solver.preview.*) are declared in the order of the setting's choices
+// (Settings::choice, engine/src/scene/settings_specs.cpp).
 enum class GlobalSolverKind { DomainDecomposed, Monolithic };  // pd-dd section 4 / baseline CHOLMOD on eq. 3
 enum class LocalStepKind { GaussSeidel, Jacobi };              // pd-dd section 5 / vanilla PD baseline
 // pd-dd section 6 (eq. 24 + PCG) / plain PCG / the dual solved by conjugate gradients preconditioned by the

@@ -11,6 +11,7 @@
 #include "drape/fabric/fabric.h"
 #include "drape/geometry/triangle_mesh.h"
 #include "drape/pattern/pattern.h"
+#include "drape/scene/implementation.h"
 #include "drape/scene/settings.h"
 
 namespace drape {
@@ -66,6 +67,7 @@ struct Scene {
   std::map<std::string, Fabric> panelFabrics;  // panel name -> fabric, where it differs from the default
   std::vector<PinSpec> pins;
   Diagnostics diagnostics;          // warnings from every loader
+  Implementation implementation;    // set by benchmarks and tests, never by a scene file
 
   bool hasAvatar() const { return avatar.triangleCount() > 0; }
   const Fabric& fabricOfPanel(const std::string& panel) const {

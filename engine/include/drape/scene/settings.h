@@ -14,6 +14,16 @@ namespace drape {
 // Vector3: three numbers, written [x, y, z] in scene files and x,y,z on the command line.
 enum class SettingType { Number, Integer, Boolean, Text, Choice, Vector3 };
 
+// What a setting is about: the groups drape --list-settings and the GUI's settings table show, in this order.
+enum class SettingGroup { Scene, Mesh, Fabric, Contact, Run, Preview, Drape, Quality, Output };
+constexpr int kSettingGroupCount = 9;
+const char* settingGroupName(SettingGroup group);   // "scene", "mesh", ...
+const char* settingGroupTitle(SettingGroup group);  // one line on what the group's settings decide
+
+// What a run simulates (solver.stage; in the order of the setting's choices): nothing (the placed garment), the
+// preview, the drape from the placed garment, or the full pipeline (the preview, then the drape from its state).
+enum class StagePlan { None, Preview, Drape, Full };
+
 struct SettingSpec {
   std::string key;           // dotted name
   SettingType type;
@@ -23,6 +33,7 @@ struct SettingSpec {
   double min = -1e300;       // Number/Integer bounds, and of each Vector3 component (inclusive)
   double max = 1e300;
   std::vector<std::string> choices;  // Choice only
+  SettingGroup group = SettingGroup::Scene;
 };
 
 class Settings {
@@ -44,6 +55,14 @@ class Settings {
   bool flag(std::string_view key) const;
   const std::string& text(std::string_view key) const;
   Eigen::Vector3d vector3(std::string_view key) const;
+  // A Choice setting as an enum whose enumerators are declared in the order of the spec's choices: the spec table
+  // is the one place the names are written. choiceIndex: the value's position among the choices.
+  int choiceIndex(std::string_view key) const;
+  template <class Enum>
+  Enum choice(std::string_view key) const {
+    return static_cast<Enum>(choiceIndex(key));
+  }
+  StagePlan stagePlan() const { return choice<StagePlan>("solver.stage"); }
 
   // Settings that differ from their defaults, key -> value (for reports and saving).
   std::map<std::string, std::string> changed() const;

@@ -33,7 +33,7 @@ double previewCourantLimitOf(const Scene& scene);
 
 struct StepReport {
   StepStatus status = StepStatus::Converged;
-  std::string stage;           // "preview" or "drape"
+  Stage stage = Stage::Preview;  // Preview or Drape
   double time = 0.0;           // simulated seconds after the step
   double h = 0.0;              // step taken, s
   int iterations = 0;          // Newton iterations (drape) or local-global iterations (preview)
@@ -70,7 +70,7 @@ struct StepReport {
 // Where a running simulation is, so that the simulation of an edited scene (another fabric, a pin added in the
 // GUI) can continue from it instead of from the placed garment.
 struct ResumeState {
-  std::string stage;                 // "preview" or "drape" when captured
+  Stage stage = Stage::Preview;      // Preview or Drape when captured
   bool assembling = false;           // captured while the preview sewed its coarser assembly mesh (not resumed)
   int vertexCount = 0;               // garment vertices; a garment meshed differently cannot resume
   Eigen::MatrixX3d positions;        // |V| x 3, metres
@@ -87,7 +87,7 @@ struct ResumeState {
 // preview and full run the preview from them at rest, at time 0 (its quasi-static start included); stage drape
 // runs the drape from them as from a preview's hand-over (velocities zero, no relaxation unless
 // solver.newton.relaxation_after_preview, h_max times solver.newton.h_max_factor_after_preview).
-ResumeState startStateAt(const std::string& stage, const Eigen::MatrixX3d& positions);
+ResumeState startStateAt(StagePlan plan, const Eigen::MatrixX3d& positions);
 
 class Simulation {
  public:
@@ -133,7 +133,7 @@ class Simulation {
   const std::vector<int>& pinned() const { return m_pinned; }
   // Names of the terms the current stage's solver uses ("membrane", "bending", "avatar_contact", ...).
   std::vector<std::string> terms() const;
-  std::string stage() const;  // "preview" or "drape"
+  Stage stage() const;  // Preview or Drape
   // The preview is sewing the garment on its coarser assembly mesh (solver.preview.assembly_edge_length); the
   // garment's positions are carried over from it.
   bool assembling() const;

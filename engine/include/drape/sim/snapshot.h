@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "drape/geometry/triangle_mesh.h"
+#include "drape/sim/stage.h"
 
 namespace drape {
 
@@ -26,7 +27,7 @@ struct Snapshot {
   double contactThickness = 0.0;
   // State
   double time = 0.0;               // simulated seconds
-  std::string stage;               // "placed", "preview", "drape", "done"
+  Stage stage = Stage::Placed;
 
   BoundingBox bounds() const {
     BoundingBox b = boundsOf(positions);

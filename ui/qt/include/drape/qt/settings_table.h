@@ -1,6 +1,6 @@
 #pragma once
 // The advanced section of the Simulation dock: every setting of Settings::specs() in one table (key, value,
-// unit), a description in each row's tooltip. Choices and flags are combo boxes, numbers and text are
+// unit, group; rows in the groups' order), a description in each row's tooltip. Choices and flags are combo boxes, numbers and text are
 // editable cells. An edit is announced, not applied: the document validates it and the table is refreshed.
 #include <QTableWidget>
 #include <string>

@@ -15,8 +15,8 @@
 // instead, as long as that bound keeps it clear of the contact band by a margin. Queries are bounded by
 // searchRadius: the energy is that of vertices with -searchRadius < d < thickness. Results for the last x are
 // cached so that value, gradient and Hessian at the same x share one set of queries. Each vertex keeps the avatar
-// triangles near its last full query (AvatarCollider::closest with NearbyTriangles): a vertex near the body moves
-// little between evaluations, so most queries are settled by that short list instead of a search.
+// triangles near its last full query (collision::AvatarCollider::closest with collision::NearbyTriangles): a vertex
+// near the body moves little between evaluations, so most queries are settled by that short list instead of a search.
 #include <Eigen/Core>
 #include <memory>
 #include <mutex>
@@ -26,7 +26,7 @@
 #include "drape/collision/contact_stencil.h"
 #include "drape/newton/energy.h"
 
-namespace drape::collision {
+namespace drape::newton {
 
 struct ContactParameters {
   double stiffness = 1e2;      // k, N/m per contact (paper: 10^2)
@@ -54,36 +54,37 @@ struct AvatarPenalty {
   double stiffnessAt(double distance) const;
 };
 
-class AvatarContactEnergy : public newton::Energy {
+class AvatarContactEnergy : public Energy {
  public:
   // vertexCount: garment vertices; collider shared with other users (the PD preview, statistics).
-  AvatarContactEnergy(std::shared_ptr<const AvatarCollider> collider, int vertexCount, ContactParameters params);
+  AvatarContactEnergy(std::shared_ptr<const collision::AvatarCollider> collider, int vertexCount,
+                      ContactParameters params);
 
   std::string_view name() const override { return "avatar_contact"; }
-  void beginStep(const newton::StepContext& ctx) override;
+  void beginStep(const StepContext& ctx) override;
   double value(const Eigen::VectorXd& x) const override;
   void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
-  void addHessian(const Eigen::VectorXd& x, newton::BlockMatrix& h) const override;
+  void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const override;
 
   // Vertices with signed distance < thickness at x: one-vertex stencils (weight 1), distance signed, normal the
   // outward gradient of the signed distance. Used by friction for its normal forces.
-  const std::vector<ContactStencil>& contacts(const Eigen::VectorXd& x) const;
+  const std::vector<collision::ContactStencil>& contacts(const Eigen::VectorXd& x) const;
   // Vertices whose contact query could not be skipped in the last evaluation (for statistics).
   int lastQueryCount() const { return m_lastQueries; }
   // Vertices the last beginStep queried (the others kept a lower bound; for statistics and tests).
   int lastStartQueryCount() const { return m_lastStartQueries; }
   const ContactParameters& parameters() const { return m_params; }
-  const AvatarCollider& collider() const { return *m_collider; }
+  const collision::AvatarCollider& collider() const { return *m_collider; }
 
  private:
   struct Active {
-    ContactStencil stencil;
+    collision::ContactStencil stencil;
     double curvature = 0.0;  // Hessian of the signed distance = curvature * (P - n n^T), P below
     Eigen::Matrix3d complement = Eigen::Matrix3d::Zero();  // projector off the closest feature's span
   };
   void update(const Eigen::VectorXd& x) const;
 
-  std::shared_ptr<const AvatarCollider> m_collider;
+  std::shared_ptr<const collision::AvatarCollider> m_collider;
   int m_vertexCount = 0;
   ContactParameters m_params;
   AvatarPenalty m_penalty;
@@ -97,13 +98,13 @@ class AvatarContactEnergy : public newton::Energy {
   Eigen::VectorXd m_startPositions;     // x at the last beginStep (empty before the first)
   std::vector<double> m_startDistance;  // signed distance at m_startPositions per vertex (see m_startKind)
   std::vector<StartKind> m_startKind;
-  mutable std::vector<NearbyTriangles> m_nearby;  // per vertex: the triangles near its last full query
+  mutable std::vector<collision::NearbyTriangles> m_nearby;  // per vertex: the triangles near its last full query
   mutable std::mutex m_mutex;
   mutable Eigen::VectorXd m_cachedX;
   mutable std::vector<Active> m_active;
-  mutable std::vector<ContactStencil> m_stencils;
+  mutable std::vector<collision::ContactStencil> m_stencils;
   mutable int m_lastQueries = 0;
   int m_lastStartQueries = 0;
 };
 
-}  // namespace drape::collision
+}  // namespace drape::newton

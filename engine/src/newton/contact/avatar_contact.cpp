@@ -2,7 +2,7 @@
 // (a face, an edge or a point): with P = I - E (E^T E)^-1 E^T and n = grad d,
 //   hess d = (P - n n^T) / d,
 // zero for a face, the edge / point curvature otherwise (d signed: the same formula holds inside).
-#include "drape/collision/avatar_contact.h"
+#include "drape/newton/contact/avatar_contact.h"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -11,7 +11,7 @@
 #include <cmath>
 #include <functional>
 
-namespace drape::collision {
+namespace drape::newton {
 
 double AvatarPenalty::energy(double distance) const {
   const double k = stiffness;
@@ -32,7 +32,7 @@ double AvatarPenalty::stiffnessAt(double distance) const {
   return distance >= 0.0 ? stiffness : stiffness * insideStiffnessFactor;
 }
 
-AvatarContactEnergy::AvatarContactEnergy(std::shared_ptr<const AvatarCollider> collider, int vertexCount,
+AvatarContactEnergy::AvatarContactEnergy(std::shared_ptr<const collision::AvatarCollider> collider, int vertexCount,
                                          ContactParameters params)
     : m_collider(std::move(collider)),
       m_vertexCount(vertexCount),
@@ -42,7 +42,7 @@ AvatarContactEnergy::AvatarContactEnergy(std::shared_ptr<const AvatarCollider> c
       m_startKind(vertexCount, StartKind::Far),
       m_nearby(vertexCount) {}
 
-void AvatarContactEnergy::beginStep(const newton::StepContext& ctx) {
+void AvatarContactEnergy::beginStep(const StepContext& ctx) {
   std::lock_guard lock(m_mutex);
   const Eigen::VectorXd& xn = *ctx.previousPositions;
   const bool propagate = m_startPositions.size() == xn.size();  // there was a last start
@@ -61,7 +61,7 @@ void AvatarContactEnergy::beginStep(const newton::StepContext& ctx) {
       }
     }
     ++queries.local();
-    SurfacePoint s;
+    collision::SurfacePoint s;
     bool found = m_collider->closest(p, s, radius, m_nearby[v]);
     // Nothing within the radius: far outside, or deeper inside (ignored, see header). Outside, the exact distance
     // carries over to later steps as a bound, so that a vertex hanging away from the body is not queried again.
@@ -97,7 +97,7 @@ void AvatarContactEnergy::update(const Eigen::VectorXd& x) const {
           bound = std::min(bound, (std::abs(m_startDistance[v]) + moved) * (1.0 + 1e-9) + 1e-12);
       }
       ++queries.local();
-      SurfacePoint s;
+      collision::SurfacePoint s;
       if (!m_collider->closest(p, s, bound, m_nearby[v])) continue;  // one task per vertex: no race
       if (!(s.signedDistance < th)) continue;
       Active a;
@@ -109,17 +109,17 @@ void AvatarContactEnergy::update(const Eigen::VectorXd& x) const {
       const auto corner = [&](int k) -> Eigen::Vector3d { return mesh.vertices.row(mesh.triangles(s.triangle, k)); };
       Eigen::Vector3d edge = Eigen::Vector3d::Zero();
       switch (s.region) {
-        case TriangleRegion::Face: break;
-        case TriangleRegion::EdgeAB: edge = corner(1) - corner(0); break;
-        case TriangleRegion::EdgeBC: edge = corner(2) - corner(1); break;
-        case TriangleRegion::EdgeCA: edge = corner(0) - corner(2); break;
+        case collision::TriangleRegion::Face: break;
+        case collision::TriangleRegion::EdgeAB: edge = corner(1) - corner(0); break;
+        case collision::TriangleRegion::EdgeBC: edge = corner(2) - corner(1); break;
+        case collision::TriangleRegion::EdgeCA: edge = corner(0) - corner(2); break;
         default: a.complement = Eigen::Matrix3d::Identity(); break;
       }
       if (edge.squaredNorm() > 0.0) {
         edge.normalize();
         a.complement = Eigen::Matrix3d::Identity() - edge * edge.transpose();
       }
-      if (s.region != TriangleRegion::Face) {
+      if (s.region != collision::TriangleRegion::Face) {
         // Keep |d| away from zero: the curvature of a point or edge distance blows up on the feature itself.
         const double dSafe = std::copysign(std::max(std::abs(s.signedDistance), 1e-2 * th), s.signedDistance);
         a.curvature = 1.0 / dSafe;
@@ -137,7 +137,7 @@ void AvatarContactEnergy::update(const Eigen::VectorXd& x) const {
   m_cachedX = x;
 }
 
-const std::vector<ContactStencil>& AvatarContactEnergy::contacts(const Eigen::VectorXd& x) const {
+const std::vector<collision::ContactStencil>& AvatarContactEnergy::contacts(const Eigen::VectorXd& x) const {
   std::lock_guard lock(m_mutex);
   update(x);
   return m_stencils;
@@ -158,7 +158,7 @@ void AvatarContactEnergy::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd&
     g.segment<3>(3 * a.stencil.vertices[0]) -= m_penalty.force(a.stencil.distance) * a.stencil.normal;
 }
 
-void AvatarContactEnergy::addHessian(const Eigen::VectorXd& x, newton::BlockMatrix& h) const {
+void AvatarContactEnergy::addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const {
   std::lock_guard lock(m_mutex);
   update(x);
   for (const Active& a : m_active) {
@@ -172,4 +172,4 @@ void AvatarContactEnergy::addHessian(const Eigen::VectorXd& x, newton::BlockMatr
   }
 }
 
-}  // namespace drape::collision
+}  // namespace drape::newton

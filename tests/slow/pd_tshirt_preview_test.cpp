@@ -58,7 +58,7 @@ TEST(PdTshirtPreview, DefaultSceneStaysOnTheBodyAndHandsOverToTheDrape) {
   // the largest stretch stays moderate, and the shirt does not slide off.
   double worstStrain = 0.0, lastStrain = 0.0;
   int steps = 0;
-  while (!sim.finished() && sim.stage() == "preview") {
+  while (!sim.finished() && sim.stage() == Stage::Preview) {
     const StepReport r = sim.step();
     ASSERT_NE(r.status, StepStatus::Diverged) << "t = " << r.time;
     if (r.time > 0.1) worstStrain = std::max(worstStrain, r.maxStrain);
@@ -75,7 +75,7 @@ TEST(PdTshirtPreview, DefaultSceneStaysOnTheBodyAndHandsOverToTheDrape) {
   EXPECT_EQ(off.away, 0);
   // The full pipeline continues in the Newton drape and does not diverge there.
   for (int i = 0; i < 200 && !sim.finished(); ++i) ASSERT_NE(sim.step().status, StepStatus::Diverged);
-  EXPECT_EQ(sim.stage(), "drape");
+  EXPECT_EQ(sim.stage(), Stage::Drape);
 }
 
 // Once sewn (solver.preview.sewn_gap), the preview holds contact targets within a step and lets the cloth's tension
@@ -160,7 +160,7 @@ TEST(PdTshirtPreview, QuasiStaticStartKeepsTheBackHemDown) {
     return mean;
   };
   double worstStrain = 0.0, highestHem = -1e9;
-  while (!sim.finished() && sim.stage() == "preview") {
+  while (!sim.finished() && sim.stage() == Stage::Preview) {
     const StepReport r = sim.step();
     ASSERT_NE(r.status, StepStatus::Diverged) << "t = " << r.time;
     if (r.time > 0.1) worstStrain = std::max(worstStrain, r.maxStrain);
@@ -179,7 +179,7 @@ TEST(PdTshirtPreview, QuasiStaticStartKeepsTheBackHemDown) {
   EXPECT_EQ(off.inside, 0);
   EXPECT_EQ(off.away, 0);
   for (int i = 0; i < 50 && !sim.finished(); ++i) ASSERT_NE(sim.step().status, StepStatus::Diverged);
-  EXPECT_EQ(sim.stage(), "drape");
+  EXPECT_EQ(sim.stage(), Stage::Drape);
 }
 
 // At 1 cm the preview cannot sew the t-shirt by itself: every step hits the L-G cap at 1/480 s, the armhole
@@ -203,7 +203,7 @@ TEST(PdTshirtPreview, FineShirtIsSewnOnACoarserMeshAndCarriedOver) {
     const Snapshot snap = sim.snapshot();
     EXPECT_EQ(snap.positions.rows(), sim.garment().vertexCount());
     EXPECT_EQ(snap.vertexContact.size(), sim.garment().vertexCount());
-    EXPECT_EQ(snap.stage, "preview");
+    EXPECT_EQ(snap.stage, Stage::Preview);
     Simulation free(sim.scene(), state);
     const Eigen::Vector3d grabbed = again.positions().row(100).transpose();
     again.setDrag(100, grabbed + Eigen::Vector3d(0.0, 0.0, 0.05));

@@ -18,17 +18,17 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "drape/collision/avatar_contact.h"
-#include "drape/collision/avatar_feature_contact.h"
 #include "drape/collision/contact_stencil.h"
-#include "drape/collision/self_contact.h"
+#include "drape/newton/contact/avatar_contact.h"
+#include "drape/newton/contact/avatar_feature_contact.h"
+#include "drape/newton/contact/self_contact.h"
 #include "drape/newton/energy.h"
 
-namespace drape::collision {
+namespace drape::newton {
 
 struct FrictionParameters {
-  double mu = 0.3;       // Coulomb coefficient (> 0; a coefficient of 0 creates no friction energy at all)
-  double epsV = 1e-3;    // slip velocity below which friction acts as a stiff static spring, m/s
+  double mu = 0.3;                   // Coulomb coefficient (> 0; a coefficient of 0 creates no friction energy at all)
+  double epsV = 1e-3;                // slip velocity below which friction acts as a stiff static spring, m/s
   bool majorizeAtPrediction = true;  // the majorizer at a step's first iterate (contact.friction_majorizer)
 };
 
@@ -36,24 +36,23 @@ struct FrictionParameters {
 double frictionF0(double y, double eps);
 double frictionF1(double y, double eps);
 
-class FrictionEnergy : public newton::Energy {
+class FrictionEnergy : public Energy {
  public:
   // Any source may be null; they must outlive this energy (the factory keeps them in the same list).
   FrictionEnergy(const AvatarContactEnergy* avatar, const SelfContactEnergy* self, FrictionParameters params,
                  const AvatarFeatureContactEnergy* features = nullptr);
 
   std::string_view name() const override { return "friction"; }
-  void beginStep(const newton::StepContext& ctx) override;
+  void beginStep(const StepContext& ctx) override;
   double value(const Eigen::VectorXd& x) const override;
   void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
-  void addHessian(const Eigen::VectorXd& x, newton::BlockMatrix& h) const override;
+  void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const override;
   // The gradient and, with majorizeAtPrediction, the isotropic majorizer (above) instead of the Hessian.
-  void addPredictionGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g,
-                                       newton::BlockMatrix& h) const override;
+  void addPredictionGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g, BlockMatrix& h) const override;
 
   // Lagged contacts of the current step and their normal forces (N).
   struct LaggedContact {
-    ContactStencil stencil;
+    collision::ContactStencil stencil;
     double normalForce = 0.0;
     Eigen::Matrix3d tangent = Eigen::Matrix3d::Zero();  // I - n n^T
   };
@@ -63,7 +62,7 @@ class FrictionEnergy : public newton::Energy {
 
  private:
   Eigen::Vector3d slip(const LaggedContact& c, const Eigen::VectorXd& x) const;
-  void addBlocks(const Eigen::VectorXd& x, newton::BlockMatrix& h, bool majorizer) const;
+  void addBlocks(const Eigen::VectorXd& x, BlockMatrix& h, bool majorizer) const;
 
   const AvatarContactEnergy* m_avatar = nullptr;
   const SelfContactEnergy* m_self = nullptr;
@@ -74,4 +73,4 @@ class FrictionEnergy : public newton::Energy {
   std::vector<LaggedContact> m_contacts;
 };
 
-}  // namespace drape::collision
+}  // namespace drape::newton

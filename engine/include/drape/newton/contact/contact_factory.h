@@ -9,15 +9,15 @@
 #include <vector>
 
 #include "drape/collision/avatar_collider.h"
-#include "drape/collision/avatar_contact.h"
-#include "drape/collision/friction.h"
 #include "drape/model/cloth_model.h"
+#include "drape/newton/contact/avatar_contact.h"
+#include "drape/newton/contact/friction.h"
 #include "drape/newton/energy.h"
 
-namespace drape::collision {
+namespace drape::newton {
 
 struct ContactSetup {
-  std::shared_ptr<const AvatarCollider> avatar;  // null: the scene has no avatar
+  std::shared_ptr<const collision::AvatarCollider> avatar;  // null: the scene has no avatar
   ContactParameters avatarContact;
   // Avatar vertices whose radius of curvature is below this (metres) also push the garment's triangles
   // (avatar_feature_contact.h, "avatar_feature_contact"); 0: none.
@@ -32,10 +32,11 @@ struct ContactSetup {
 };
 
 // Garment: vertexCount vertices, triangles |F| x 3, stitched vertex pairs and edge stitches (non-conforming
-// seams); neither repels across its seam (contactMergedVertices, self_contact.h).
+// seams); neither repels across its seam (collision/contact_merged_vertices.h).
 // The friction energy, when created, points at the contact energies in the same list: keep the list together.
-std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(
-    const ContactSetup& setup, int vertexCount, const Eigen::MatrixX3i& triangles,
-    const std::vector<std::pair<int, int>>& stitches, const std::vector<model::EdgeStitch>& edgeStitches = {});
+std::vector<std::unique_ptr<Energy>> makeContactEnergies(const ContactSetup& setup, int vertexCount,
+                                                         const Eigen::MatrixX3i& triangles,
+                                                         const std::vector<std::pair<int, int>>& stitches,
+                                                         const std::vector<model::EdgeStitch>& edgeStitches = {});
 
-}  // namespace drape::collision
+}  // namespace drape::newton

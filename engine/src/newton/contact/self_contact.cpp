@@ -1,20 +1,12 @@
-// Candidate pairs from SelfProximity, exact penalty per pair through the stencil derivatives, per-pair results
-// computed in parallel and scattered serially into the gradient and the dynamic Hessian blocks.
-#include "drape/collision/self_contact.h"
+// Candidate pairs from collision::SelfProximity, exact penalty per pair through the stencil derivatives, per-pair
+// results computed in parallel and scattered serially into the gradient and the dynamic Hessian blocks.
+#include "drape/newton/contact/self_contact.h"
 
 #include <tbb/parallel_for.h>
 
 #include <cmath>
 
-namespace drape::collision {
-
-std::vector<std::pair<int, int>> contactMergedVertices(const std::vector<std::pair<int, int>>& stitchPairs,
-                                                       const std::vector<model::EdgeStitch>& edgeStitches) {
-  std::vector<std::pair<int, int>> merged = stitchPairs;
-  merged.reserve(stitchPairs.size() + edgeStitches.size());
-  for (const model::EdgeStitch& e : edgeStitches) merged.emplace_back(e.vertex, e.t <= 0.5 ? e.a : e.b);
-  return merged;
-}
+namespace drape::newton {
 
 SelfContactEnergy::SelfContactEnergy(const Eigen::MatrixX3i& triangles, int vertexCount,
                                      const std::vector<std::pair<int, int>>& mergedVertices, ContactParameters params,
@@ -23,7 +15,7 @@ SelfContactEnergy::SelfContactEnergy(const Eigen::MatrixX3i& triangles, int vert
       m_margin(margin > 0.0 ? margin : params.thickness),
       m_proximity(triangles, vertexCount, mergedVertices) {}
 
-void SelfContactEnergy::beginStep(const newton::StepContext& ctx) {
+void SelfContactEnergy::beginStep(const StepContext& ctx) {
   std::lock_guard lock(m_mutex);
   m_reference.resize(0);
   ensureCandidates(*ctx.previousPositions);
@@ -59,11 +51,11 @@ std::vector<SelfContactEnergy::Evaluated> SelfContactEnergy::evaluate(const Eige
       const auto& p = m_vertexTriangle[k];
       e.vertices = {p.vertex, tris(p.triangle, 0), tris(p.triangle, 1), tris(p.triangle, 2)};
       e.distance =
-          pointTriangleSquaredDistance(at(e.vertices[0]), at(e.vertices[1]), at(e.vertices[2]), at(e.vertices[3]));
+          collision::pointTriangleSquaredDistance(at(e.vertices[0]), at(e.vertices[1]), at(e.vertices[2]), at(e.vertices[3]));
     } else {
       const auto& p = m_edgeEdge[k - vt];
       e.vertices = {edges(p.first, 0), edges(p.first, 1), edges(p.second, 0), edges(p.second, 1)};
-      e.distance = edgeEdgeSquaredDistance(at(e.vertices[0]), at(e.vertices[1]), at(e.vertices[2]), at(e.vertices[3]));
+      e.distance = collision::edgeEdgeSquaredDistance(at(e.vertices[0]), at(e.vertices[1]), at(e.vertices[2]), at(e.vertices[3]));
     }
     active[k] = penaltyFromSquaredDistance(e.distance, m_params.stiffness, m_params.thickness,
                                            withHessian && m_params.projectHessian, e.energy, e.gradient, e.hessian);
@@ -89,7 +81,7 @@ void SelfContactEnergy::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g
   }
 }
 
-void SelfContactEnergy::addHessian(const Eigen::VectorXd& x, newton::BlockMatrix& h) const {
+void SelfContactEnergy::addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const {
   std::lock_guard lock(m_mutex);
   for (const Evaluated& p : evaluate(x, true)) {
     for (int i = 0; i < 4; ++i) {
@@ -108,11 +100,11 @@ void SelfContactEnergy::addHessian(const Eigen::VectorXd& x, newton::BlockMatrix
   }
 }
 
-std::vector<ContactStencil> SelfContactEnergy::contacts(const Eigen::VectorXd& x) const {
+std::vector<collision::ContactStencil> SelfContactEnergy::contacts(const Eigen::VectorXd& x) const {
   std::lock_guard lock(m_mutex);
-  std::vector<ContactStencil> out;
+  std::vector<collision::ContactStencil> out;
   for (const Evaluated& p : evaluate(x, false)) {
-    ContactStencil s;
+    collision::ContactStencil s;
     s.vertices = p.vertices;
     s.count = 4;
     Eigen::Vector3d r = Eigen::Vector3d::Zero();
@@ -127,4 +119,4 @@ std::vector<ContactStencil> SelfContactEnergy::contacts(const Eigen::VectorXd& x
   return out;
 }
 
-}  // namespace drape::collision
+}  // namespace drape::newton

@@ -1,9 +1,9 @@
 // Lagged, mollified Coulomb friction; see friction.h for the potential and its derivatives.
-#include "drape/collision/friction.h"
+#include "drape/newton/contact/friction.h"
 
 #include <cmath>
 
-namespace drape::collision {
+namespace drape::newton {
 
 double frictionF0(double y, double eps) {
   if (y >= eps) return y;
@@ -25,11 +25,11 @@ void FrictionEnergy::setLagged(std::vector<LaggedContact> contacts, const Eigen:
   m_eps = std::max(m_params.epsV * h, 1e-12);
 }
 
-void FrictionEnergy::beginStep(const newton::StepContext& ctx) {
+void FrictionEnergy::beginStep(const StepContext& ctx) {
   const Eigen::VectorXd& xn = *ctx.previousPositions;
   std::vector<LaggedContact> contacts;
-  auto add = [&](const std::vector<ContactStencil>& stencils, const ContactParameters& p) {
-    for (const ContactStencil& s : stencils) {
+  auto add = [&](const std::vector<collision::ContactStencil>& stencils, const ContactParameters& p) {
+    for (const collision::ContactStencil& s : stencils) {
       LaggedContact c;
       c.stencil = s;
       c.normalForce = p.stiffness * (p.thickness - s.distance);
@@ -69,17 +69,17 @@ void FrictionEnergy::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) c
   }
 }
 
-void FrictionEnergy::addHessian(const Eigen::VectorXd& x, newton::BlockMatrix& h) const {
+void FrictionEnergy::addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const {
   addBlocks(x, h, false);
 }
 
 void FrictionEnergy::addPredictionGradientAndHessian(const Eigen::VectorXd& x, Eigen::VectorXd& g,
-                                                     newton::BlockMatrix& h) const {
+                                                     BlockMatrix& h) const {
   addGradient(x, g);
   addBlocks(x, h, m_params.majorizeAtPrediction);
 }
 
-void FrictionEnergy::addBlocks(const Eigen::VectorXd& x, newton::BlockMatrix& h, bool majorizer) const {
+void FrictionEnergy::addBlocks(const Eigen::VectorXd& x, BlockMatrix& h, bool majorizer) const {
   for (const LaggedContact& c : m_contacts) {
     const Eigen::Vector3d u = slip(c, x);
     const double y = u.norm();
@@ -109,4 +109,4 @@ void FrictionEnergy::addBlocks(const Eigen::VectorXd& x, newton::BlockMatrix& h,
   }
 }
 
-}  // namespace drape::collision
+}  // namespace drape::newton

@@ -1,16 +1,16 @@
 // Composition of the contact terms; see contact_factory.h.
-#include "drape/collision/contact_factory.h"
+#include "drape/newton/contact/contact_factory.h"
 
-#include "drape/collision/avatar_feature_contact.h"
-#include "drape/collision/self_contact.h"
+#include "drape/newton/contact/avatar_feature_contact.h"
+#include "drape/newton/contact/self_contact.h"
 
-namespace drape::collision {
+namespace drape::newton {
 
-std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(const ContactSetup& setup, int vertexCount,
-                                                                 const Eigen::MatrixX3i& triangles,
-                                                                 const std::vector<std::pair<int, int>>& stitches,
-                                                                 const std::vector<model::EdgeStitch>& edgeStitches) {
-  std::vector<std::unique_ptr<newton::Energy>> out;
+std::vector<std::unique_ptr<Energy>> makeContactEnergies(const ContactSetup& setup, int vertexCount,
+                                                         const Eigen::MatrixX3i& triangles,
+                                                         const std::vector<std::pair<int, int>>& stitches,
+                                                         const std::vector<model::EdgeStitch>& edgeStitches) {
+  std::vector<std::unique_ptr<Energy>> out;
   const AvatarContactEnergy* avatar = nullptr;
   const SelfContactEnergy* self = nullptr;
   const AvatarFeatureContactEnergy* featureContact = nullptr;
@@ -19,7 +19,8 @@ std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(const ContactSe
     avatar = e.get();
     out.push_back(std::move(e));
     if (setup.featureRadius > 0.0 && triangles.rows() > 0) {
-      std::vector<FeatureVertex> features = avatarFeatureVertices(setup.avatar->mesh(), setup.featureRadius);
+      std::vector<collision::FeatureVertex> features =
+          collision::avatarFeatureVertices(setup.avatar->mesh(), setup.featureRadius);
       if (!features.empty()) {
         auto f = std::make_unique<AvatarFeatureContactEnergy>(std::move(features), triangles, setup.avatarContact,
                                                               setup.featureReach);
@@ -29,7 +30,8 @@ std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(const ContactSe
     }
   }
   if (setup.selfCollision && triangles.rows() > 0) {
-    auto e = std::make_unique<SelfContactEnergy>(triangles, vertexCount, contactMergedVertices(stitches, edgeStitches),
+    auto e = std::make_unique<SelfContactEnergy>(triangles, vertexCount,
+                                                 collision::contactMergedVertices(stitches, edgeStitches),
                                                  setup.selfContact, setup.selfMargin);
     self = e.get();
     out.push_back(std::move(e));
@@ -41,4 +43,4 @@ std::vector<std::unique_ptr<newton::Energy>> makeContactEnergies(const ContactSe
   return out;
 }
 
-}  // namespace drape::collision
+}  // namespace drape::newton

@@ -1,0 +1,37 @@
+// The extremes grid (drape/sim/extremes_grid.h) on a real garment: the library t-shirt on the female mannequin, every
+// cell in the drape for the first 0.05 s (the seams closing, where the extremes bite first). Every cell must hold:
+// finite, diverged only where the garment exploded and the run said so, nothing inside the body beyond the contact
+// thickness. (The projective preview fails three cells, docs/EXTREMES.md.) The grid's cells themselves are checked in
+// tests/unit/extremes_grid_test.cpp.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <set>
+#include <string>
+
+#include "drape/sim/extremes_grid.h"
+#include "shared_data.h"
+
+namespace drape::test {
+namespace {
+
+// Cells the drape does not hold yet (docs/EXTREMES.md): the stiffest stretch (1e7 N/m) and the
+// coarsest mesh (1 m edges) leave vertices inside the body beyond the contact thickness. They are run and reported,
+// and fail the test when they come to hold, so that this list is kept true.
+const std::set<std::string> kOpen = {"stretch max", "mesh edge max"};
+
+TEST(ExtremesGrid, LibraryTshirtHoldsInEveryCell) {
+  SceneRequest base;
+  base.input = assetsDir() / "scenes" / "tshirt.json";
+  base.overrides = {{"mesh.target_edge_length", "0.03"}};
+  for (const ExtremeCell& cell : extremeCells()) {
+    const ExtremeOutcome o = runExtremeCell(base, cell, "drape", 0.05, 2000);
+    std::printf("[ ExtremesGrid ] %-52s %-10s %5d steps %7.1f s  strain %.3g  %s\n", cell.name.c_str(),
+                o.status.c_str(), o.steps, o.wallSeconds, o.maxStrain, o.failure.empty() ? "holds" : o.failure.c_str());
+    EXPECT_EQ(o.failure.empty(), kOpen.count(cell.name) == 0) << cell.name << ": " << o.failure;
+    EXPECT_TRUE(o.refusal.empty()) << cell.name << ": " << o.refusal;
+  }
+}
+
+}  // namespace
+}  // namespace drape::test
