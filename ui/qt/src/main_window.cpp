@@ -297,7 +297,7 @@ void MainWindow::connectDocument() {
     m_runState = state;
     if (state == RunState::Ready) m_statisticsPanel->clear();
     if (state == RunState::Running) m_statisticsPanel->clearQuality();  // a verdict belongs to a finished stage
-    const QString what = m_controller->stage() == "preview" ? tr("Preview") : tr("Drape");
+    const QString what = m_controller->stage() == Stage::Preview ? tr("Preview") : tr("Drape");
     if (state == RunState::Finished) log(tr("info"), tr("%1 finished").arg(what));
     if (state == RunState::Cancelled) log(tr("info"), tr("%1 cancelled; Resume continues, Reset starts again").arg(what));
     updateActions();
@@ -319,12 +319,13 @@ void MainWindow::connectDocument() {
 void MainWindow::updateActions() {
   const bool scene = m_document->hasScene();
   const RunState s = m_runState;
-  const QString stage = m_controller ? m_controller->stage() : QString();
+  const Stage stage = m_controller ? m_controller->stage() : Stage::Placed;
   const bool idle = s != RunState::Empty && s != RunState::Running;
   // Preview: from the placed garment, or continuing a preview; Drape: from the placed garment, from the preview
   // state, or continuing a drape that has not finished.
-  m_sim.preview->setEnabled(idle && (stage == "placed" || (stage == "preview" && s != RunState::Finished)));
-  m_sim.drape->setEnabled(idle && !(stage == "drape" && s == RunState::Finished));
+  m_sim.preview->setEnabled(idle &&
+                            (stage == Stage::Placed || (stage == Stage::Preview && s != RunState::Finished)));
+  m_sim.drape->setEnabled(idle && !(stage == Stage::Drape && s == RunState::Finished));
   m_sim.pause->setEnabled(s == RunState::Running);
   m_sim.resume->setEnabled(s == RunState::Paused || s == RunState::Cancelled);
   m_sim.cancel->setEnabled(s == RunState::Running);

@@ -9,6 +9,7 @@ SimulationController::SimulationController(QObject* parent) : QObject(parent) {
   qRegisterMetaType<std::shared_ptr<Simulation>>();
   qRegisterMetaType<StepReport>();
   qRegisterMetaType<RunState>();
+  qRegisterMetaType<Stage>();
   qRegisterMetaType<QualityReport>();
   m_thread.setObjectName("drape-simulation");
   m_worker = new SimulationWorker;
@@ -30,7 +31,7 @@ SimulationController::SimulationController(QObject* parent) : QObject(parent) {
       Qt::QueuedConnection);
   connect(
       m_worker, &SimulationWorker::stageChanged, this,
-      [this](QString stage) {
+      [this](Stage stage) {
         m_stage = stage;
         emit stageChanged(stage);
       },

@@ -27,9 +27,9 @@ std::shared_ptr<Simulation> SimulationWorker::current() const {
   return m_simulation;
 }
 
-QString SimulationWorker::stage() const {
+Stage SimulationWorker::stage() const {
   std::lock_guard<std::mutex> lock(m_mutex);
-  return m_stage;
+  return m_stage.value_or(Stage::Placed);
 }
 
 std::optional<ResumeState> SimulationWorker::latestResumeState() const {
@@ -62,10 +62,8 @@ void SimulationWorker::setState(RunState state) {
 
 void SimulationWorker::updateStage() {
   auto simulation = current();
-  QString stage;
-  if (simulation)
-    stage = simulation->steps() == 0 && !simulation->resumed() ? QStringLiteral("placed")
-                                                               : QString(stageName(simulation->stage()));
+  if (!simulation) return;
+  const Stage stage = simulation->steps() == 0 && !simulation->resumed() ? Stage::Placed : simulation->stage();
   {
     std::lock_guard<std::mutex> lock(m_mutex);
     if (stage == m_stage) return;
@@ -168,10 +166,10 @@ void SimulationWorker::start(int generation) {
 void SimulationWorker::startPreview(int generation) {
   auto simulation = current();
   if (!simulation || m_running.load() || cancelledSince(generation)) return;
-  const QString now = stage();
-  if (now == "drape") return;  // the drape has started: Reset goes back to the placed garment
+  const Stage now = stage();
+  if (now == Stage::Drape) return;  // the drape has started: Reset goes back to the placed garment
   if (simulation->scene().settings.stagePlan() != StagePlan::Preview) {
-    if (now == "placed") {
+    if (now == Stage::Placed) {
       if (!rebuild("preview", nullptr)) return;
     } else {  // a "full" scene still in its preview: continue it as a preview only
       const ResumeState from = simulation->resumeState();
@@ -185,7 +183,7 @@ void SimulationWorker::startDrape(int generation) {
   auto simulation = current();
   if (!simulation || m_running.load() || cancelledSince(generation)) return;
   if (simulation->stage() == Stage::Preview) {
-    if (stage() == "placed") {
+    if (stage() == Stage::Placed) {
       if (!rebuild("drape", nullptr)) return;
     } else {
       // The drape starts from the preview state (the engine resets the velocities).

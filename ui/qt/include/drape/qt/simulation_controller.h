@@ -35,7 +35,7 @@ class SimulationController : public QObject {
   // Where the worker's simulation is (thread-safe copy after its latest step); nullopt at the placed garment.
   std::optional<ResumeState> latestResumeState() const { return m_worker->latestResumeState(); }
   // "placed", "preview" or "drape" as last reported to the UI thread; empty before any simulation.
-  QString stage() const { return m_stage; }
+  Stage stage() const { return m_stage; }
   RunState runState() const { return m_lastState; }
   // Latest snapshot received on the UI thread (null before the first).
   std::shared_ptr<const Snapshot> latestSnapshot() const { return m_latest; }
@@ -45,7 +45,7 @@ class SimulationController : public QObject {
   void snapshotReady(std::shared_ptr<const drape::Snapshot> snapshot);
   void stepReported(drape::StepReport report);
   void runStateChanged(drape::qt::RunState state);
-  void stageChanged(QString stage);
+  void stageChanged(drape::Stage stage);
   void errorOccurred(QString message);
   void noticeOccurred(QString message);
   void infoOccurred(QString message);
@@ -55,7 +55,7 @@ class SimulationController : public QObject {
   QThread m_thread;
   SimulationWorker* m_worker = nullptr;  // lives on m_thread; deleted after the thread is joined
   RunState m_lastState = RunState::Empty;
-  QString m_stage;
+  Stage m_stage = Stage::Placed;
   std::shared_ptr<const Snapshot> m_latest;
 };
 

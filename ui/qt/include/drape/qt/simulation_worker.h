@@ -50,7 +50,7 @@ class SimulationWorker : public QObject {
   // Thread-safe: the latest state.
   RunState runState() const { return m_state.load(); }
   // Thread-safe: "placed" (no step yet), "preview" (PD-DD) or "drape" (Newton); empty without a simulation.
-  QString stage() const;
+  Stage stage() const;  // Placed before a simulation is set
   // Thread-safe: where the simulation is after its latest step (copied after every step), for an edited scene
   // to continue from; nullopt while the simulation is at the placed garment.
   std::optional<ResumeState> latestResumeState() const;
@@ -84,7 +84,7 @@ class SimulationWorker : public QObject {
   void snapshotReady(std::shared_ptr<const drape::Snapshot> snapshot);
   void stepReported(drape::StepReport report);
   void runStateChanged(drape::qt::RunState state);
-  void stageChanged(QString stage);
+  void stageChanged(drape::Stage stage);
   // A diverged step or a failed rebuild: shown to the user; the last good state is kept.
   void errorOccurred(QString message);
   // Something the user should know that needs no answer: a torn preview, given up for a drape from the placed
@@ -117,7 +117,7 @@ class SimulationWorker : public QObject {
 
   mutable std::mutex m_mutex;  // guards m_simulation (the pointer, not the object), m_stage and m_resume
   std::shared_ptr<Simulation> m_simulation;
-  QString m_stage;
+  std::optional<Stage> m_stage;  // none until the first simulation announces its stage
   std::optional<ResumeState> m_resume;
   std::atomic<RunState> m_state{RunState::Empty};
   std::atomic<bool> m_running{false};
