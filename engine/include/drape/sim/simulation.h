@@ -17,6 +17,7 @@
 #include "drape/scene/scene.h"
 #include "drape/sim/scene_garment.h"
 #include "drape/sim/snapshot.h"
+#include "drape/sim/stage.h"
 
 namespace drape {
 
