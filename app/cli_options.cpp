@@ -62,8 +62,14 @@ std::string usageText() {
                                           render a PNG headless (no display server needed)
   drape --render BODY.(obj|glb|gltf|fbx|ply|stl) -o OUT.png [--avatar-units U] [--view V] [--size WxH]
                                           render a body mesh on its own (mannequin previews)
-  drape --bench SCENE [--sweep KEY=V1,V2,...]... [-o REPORT.json] [--max-sim-time S]
-                                          speed/accuracy trade: each sweep value against a tight reference drape
+  drape --bench SCENE [--solver preview|drape|full] [--sweep KEY=V1,V2,...]... [--levels] [--reference REF.json]
+        [-o REPORT.json] [--plot TRADE.png] [--max-sim-time S]
+                                          speed/accuracy trade: each sweep value (and level) against a tight reference
+                                          drape, kept in REF.json and reused when it exists (docs/TRADE.md)
+  drape --trade-plot REPORT.json... -o TRADE.png
+                                          the Pareto plot of trade reports, one series per scene
+  drape --trade-levels REPORT.json... -o LEVELS.json
+                                          the GUI's speed/accuracy levels: the candidates on the reports' Pareto front
   drape --bench SCENE --extremes [--solver preview|drape|full] [-o REPORT.json] [--max-sim-time S]
                                           every physics setting at both ends of its range (and the hard
                                           combinations) in each stage: finite, diverged only when said why,
@@ -153,7 +159,8 @@ CliOptions parseCommandLine(int argc, char** argv) {
       const std::string s = value(i, a);
       const auto slash = s.find('/');
       const char* const first = s.data();
-      const auto [mid, e1] = std::from_chars(first, first + (slash == std::string::npos ? s.size() : slash), o.shardIndex);
+      const auto [mid, e1] =
+          std::from_chars(first, first + (slash == std::string::npos ? s.size() : slash), o.shardIndex);
       bool ok = slash != std::string::npos && e1 == std::errc() && mid == first + slash;
       if (ok) {
         const auto [end, e2] = std::from_chars(first + slash + 1, first + s.size(), o.shardCount);
@@ -179,6 +186,16 @@ CliOptions parseCommandLine(int argc, char** argv) {
       o.sweeps.push_back(value(i, a));
     } else if (a == "--extremes") {
       o.extremes = true;
+    } else if (a == "--levels") {
+      o.levels = true;
+    } else if (a == "--reference") {
+      o.reference = value(i, a);
+    } else if (a == "--plot") {
+      o.plot = value(i, a);
+    } else if (a == "--trade-plot") {
+      setMode(Mode::TradePlot, a);
+    } else if (a == "--trade-levels") {
+      setMode(Mode::TradeLevels, a);
     } else if (a == "--render") {
       setMode(Mode::Render, a);
       o.scene.input = value(i, a);
@@ -242,6 +259,11 @@ CliOptions parseCommandLine(int argc, char** argv) {
   if (o.mode == Mode::Gui) {
     if (positional.size() > 1) throw InputError("more than one scene given: '" + positional[1] + "'");
     if (!positional.empty()) o.scene.input = positional[0];
+  } else if (o.mode == Mode::TradePlot || o.mode == Mode::TradeLevels) {
+    const std::string flag = o.mode == Mode::TradePlot ? "--trade-plot" : "--trade-levels";
+    if (positional.empty()) throw InputError(flag + ": no trade report given (REPORT.json from drape --bench -o)");
+    if (o.output.empty()) throw InputError(flag + ": missing -o OUTPUT");
+    o.reports = positional;
   } else if (!positional.empty()) {
     throw InputError("unexpected argument '" + positional[0] + "' (see drape --help)");
   }
@@ -257,8 +279,12 @@ CliOptions parseCommandLine(int argc, char** argv) {
     throw InputError("--partition, --time, --cpus-per-task, --tasks: only with --slurm");
   if (int(o.list) + int(o.gather) + int(o.slurm) + int(o.shardCount > 0) > 1)
     throw InputError("--list, --gather, --slurm, --shard: one at a time");
-  if (o.extremes && (o.mode != Mode::Bench || !o.sweeps.empty()))
-    throw InputError("--extremes: only with --bench, and not with --sweep");
+  if (o.extremes && (o.mode != Mode::Bench || !o.sweeps.empty() || o.levels))
+    throw InputError("--extremes: only with --bench, and not with --sweep or --levels");
+  if ((o.levels || !o.reference.empty() || !o.plot.empty() || !o.sweeps.empty()) && o.mode != Mode::Bench)
+    throw InputError("--sweep, --levels, --reference, --plot: only with --bench");
+  if (o.extremes && (!o.reference.empty() || !o.plot.empty()))
+    throw InputError("--reference, --plot: not with --extremes");
   if (!o.from.empty() && o.mode != Mode::Simulate && o.mode != Mode::Render)
     throw InputError("--from: only with --simulate or --render");
   return o;

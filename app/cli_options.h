@@ -8,7 +8,21 @@
 
 namespace drape::app {
 
-enum class Mode { Gui, Help, Version, Info, Simulate, Render, Bench, MakeAvatar, Batch, ListSettings, ListFabrics };
+enum class Mode {
+  Gui,
+  Help,
+  Version,
+  Info,
+  Simulate,
+  Render,
+  Bench,
+  TradePlot,
+  TradeLevels,
+  MakeAvatar,
+  Batch,
+  ListSettings,
+  ListFabrics
+};
 
 struct CliOptions {
   Mode mode = Mode::Gui;
@@ -26,6 +40,10 @@ struct CliOptions {
   std::string from;                    // --from STATE.obj (simulate, render): the stage starts at its positions
   std::vector<std::string> sweeps;     // --sweep KEY=V1,V2 (bench)
   bool extremes = false;               // --extremes (bench): the extremes grid instead of the trade
+  bool levels = false;                 // --levels (bench): run the speed/accuracy level candidates
+  std::string reference;               // --reference FILE (bench): the reference drape, kept there and reused
+  std::string plot;                    // --plot FILE.png (bench): the report's Pareto plot
+  std::vector<std::string> reports;    // the trade reports of --trade-plot and --trade-levels
   std::string batch;                   // --batch MANIFEST.json
   int jobs = 0;                        // --jobs N (batch): jobs at a time; 0: the core count
   bool list = false;                   // --list (batch): print the job list, run nothing

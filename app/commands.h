@@ -15,6 +15,10 @@ int runRender(const CliOptions& options, std::ostream& out);
 int runBench(const CliOptions& options, std::ostream& out);
 // --bench --extremes: the extremes grid (drape/sim/extremes_grid.h) on the scene, in --solver's stage or all three.
 int runExtremes(const CliOptions& options, std::ostream& out);
+// --trade-plot REPORT.json... -o TRADE.png: the Pareto plot of trade reports (trade_report.cpp).
+int runTradePlot(const CliOptions& options, std::ostream& out);
+// --trade-levels REPORT.json... -o LEVELS.json: the GUI's speed/accuracy levels from the reports' candidates.
+int runTradeLevels(const CliOptions& options, std::ostream& out);
 int runMakeAvatar(const CliOptions& options, std::ostream& out);
 // --batch MANIFEST -o OUTDIR: every job of the manifest in child processes (batch_command.cpp); --list: the job list.
 int runBatch(const CliOptions& options, std::ostream& out);

@@ -29,6 +29,8 @@ int main(int argc, char** argv) {
       case Mode::Simulate: return runSimulate(options, std::cout);
       case Mode::Render: return runRender(options, std::cout);
       case Mode::Bench: return runBench(options, std::cout);
+      case Mode::TradePlot: return runTradePlot(options, std::cout);
+      case Mode::TradeLevels: return runTradeLevels(options, std::cout);
       case Mode::MakeAvatar: return runMakeAvatar(options, std::cout);
       case Mode::Batch: return runBatch(options, std::cout);
       case Mode::Gui: return runGui(argc, argv, options);

@@ -1,4 +1,4 @@
-// drape --simulate (Newton drape), --render, --bench and --make-avatar end to end through the executable. The
+// drape --simulate (Newton drape), --render and --make-avatar end to end (--bench: cli_trade_test.cpp) through the executable. The
 // extremes grid of --bench and the mannequin --make-avatar makes in every run are slow tests
 // (tests/slow/cli_bench_extremes_test.cpp, tests/slow/cli_make_avatar_test.cpp).
 #include <gtest/gtest.h>
@@ -353,33 +353,6 @@ TEST(CliRender, ErrorsAreOneLine) {
   auto badStage = drape("--render " + asset("scenes/tablecloth.json") + " -o x.png --simulate everything");
   EXPECT_EQ(badStage.exitCode, 1);
   EXPECT_NE(badStage.err.find("'everything' is not one of none|preview|drape|full"), std::string::npos) << badStage.err;
-}
-
-TEST(CliBench, SweepReportsEveryRunAgainstTheReference) {
-  const auto report = kScratch / "bench.json";
-  auto r = drape("--bench " + asset("scenes/hanging_cloth.json") +
-                 " --set mesh.target_edge_length=0.2 --max-sim-time 0.01 --sweep solver.cg.tolerance=1e-1,1e-3 -o " +
-                 quote(report.string()));
-  ASSERT_EQ(r.exitCode, 0) << r.err;
-  const auto j = nlohmann::json::parse(readWhole(report));
-  ASSERT_EQ(j.at("runs").size(), 3u);  // reference + two sweep values
-  EXPECT_EQ(j.at("runs")[0].at("run"), "reference");
-  EXPECT_DOUBLE_EQ(j.at("runs")[0].at("mean_distance_mm").get<double>(), 0.0);
-  for (const auto& run : j.at("runs")) EXPECT_GT(run.at("wall_time_s").get<double>(), 0.0);
-}
-
-TEST(CliBench, FailsWhenTheReferenceDoesNotFinishItsDrape) {
-  // Three steps of the reference's 0.25 ms cannot reach 0.01 s: the reference stops at the step limit, and the
-  // distances to it would measure nothing.
-  const auto report = kScratch / "bench_unfinished.json";
-  auto r = drape("--bench " + asset("scenes/hanging_cloth.json") +
-                 " --set mesh.target_edge_length=0.2 --set solver.max_steps=3 --max-sim-time 0.01"
-                 " --sweep solver.cg.tolerance=1e-1 -o " +
-                 quote(report.string()));
-  EXPECT_EQ(r.exitCode, 1) << r.err << r.out;
-  EXPECT_NE(r.out.find("reference drape ended MaxSteps"), std::string::npos) << r.out;
-  const auto j = nlohmann::json::parse(readWhole(report));
-  EXPECT_EQ(j.at("reference_status"), "MaxSteps");
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <QLineEdit>
 #include <QPlainTextEdit>
 #include <QSlider>
+#include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -167,7 +168,11 @@ TEST_F(MainWindowTest, SettingsTableListsEverySettingAndEditsAreUndoable) {
 }
 
 TEST_F(MainWindowTest, SpeedAccuracySliderSetsTheSolverSettings) {
+  // The levels come from assets/trade/speed_accuracy_levels.json (drape --trade-levels).
+  ASSERT_TRUE(window->simulationPanel()->levelsError().isEmpty())
+      << window->simulationPanel()->levelsError().toStdString();
   QSlider* slider = window->simulationPanel()->speedAccuracySlider();
+  ASSERT_TRUE(slider->isEnabled());
   slider->setValue(0);
   emit slider->sliderReleased();
   const auto& fastest = qt::speedAccuracyLevels().front();
@@ -176,6 +181,26 @@ TEST_F(MainWindowTest, SpeedAccuracySliderSetsTheSolverSettings) {
   EXPECT_EQ(qt::nearestSpeedAccuracyLevel(s), 0);
   window->undoAction()->trigger();
   EXPECT_EQ(window->document()->scene().settings.number("mesh.target_edge_length"), 0.1);
+}
+
+// Each position's tooltip says what its level costs and buys on the reference scene, with the numbers of the
+// levels file, and then the settings it sets.
+TEST_F(MainWindowTest, SpeedAccuracySliderSaysWhatEachLevelCostsAndBuys) {
+  QSlider* slider = window->simulationPanel()->speedAccuracySlider();
+  const auto& levels = qt::speedAccuracyLevels();
+  ASSERT_EQ(slider->maximum() + 1, static_cast<int>(levels.size()));
+  for (int i = 0; i < static_cast<int>(levels.size()); ++i) {
+    slider->setValue(i);
+    const QString tip = slider->toolTip();
+    const auto& level = levels[static_cast<size_t>(i)];
+    EXPECT_TRUE(tip.contains(QString::fromStdString(level.name))) << tip.toStdString();
+    EXPECT_TRUE(tip.contains(QString::fromStdString(level.summary).toHtmlEscaped())) << tip.toStdString();
+    EXPECT_NE(level.summary.find(" mm from the reference"), std::string::npos) << level.summary;
+    const long seconds = std::lround(level.wallSeconds);
+    if (level.wallSeconds >= 3)
+      EXPECT_NE(level.summary.find("about " + std::to_string(seconds) + " s"), std::string::npos) << level.summary;
+    EXPECT_TRUE(tip.contains("h_max")) << tip.toStdString();
+  }
 }
 
 TEST_F(MainWindowTest, ExportWritesTheDrapedPositionsAndScreenshotWritesAPng) {

@@ -216,6 +216,10 @@ void MainWindow::createDocks() {
   resizeDocks({simDock, statsDock}, {360, 360}, Qt::Horizontal);
   resizeDocks({logDock}, {110}, Qt::Vertical);
   m_docks = {sceneDock, fabricDock, simDock, statsDock, logDock};
+  if (!m_simulationPanel->levelsError().isEmpty())
+    log(tr("error"), tr("The speed/accuracy slider is disabled: %1 (written by %2)")
+                         .arg(m_simulationPanel->levelsError(),
+                              QString::fromUtf8(trade::kLevelsCommand.data(), trade::kLevelsCommand.size())));
 
   connect(m_fabricPanel, &FabricPanel::presetChosen, this, [this](const std::string& preset) {
     if (!m_document->setFabricPreset(preset)) refreshPanels();

@@ -8,6 +8,7 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 
+#include "drape/core/input_error.h"
 #include "drape/qt/settings_table.h"
 #include "drape/qt/speed_accuracy.h"
 
@@ -37,9 +38,15 @@ SimulationPanel::SimulationPanel(const SimulationActions& actions, QWidget* pare
 
   auto* trade = new QGroupBox(tr("Speed / accuracy"));
   auto* tradeLayout = new QGridLayout(trade);
+  // A missing or bad levels file costs the slider only: it is disabled with the reason, and the main window logs it.
+  try {
+    m_levels = &speedAccuracyLevels();
+  } catch (const InputError& e) {
+    m_levelsError = QString::fromStdString(e.what());
+  }
   m_slider = new QSlider(Qt::Horizontal);
-  const int levels = static_cast<int>(speedAccuracyLevels().size());
-  m_slider->setRange(0, levels - 1);
+  m_slider->setRange(0, m_levels ? static_cast<int>(m_levels->size()) - 1 : 0);
+  m_slider->setEnabled(m_levels != nullptr);
   m_slider->setPageStep(1);
   m_slider->setTickPosition(QSlider::TicksBelow);
   m_slider->setTickInterval(1);
@@ -52,9 +59,11 @@ SimulationPanel::SimulationPanel(const SimulationActions& actions, QWidget* pare
   layout->addWidget(trade);
   connect(m_slider, &QSlider::valueChanged, this, [this](int level) { describeLevel(level); });
   // Announce on release (or keyboard), not on every intermediate position of a drag.
-  connect(m_slider, &QSlider::sliderReleased, this, [this] { emit speedAccuracyChosen(m_slider->value()); });
+  connect(m_slider, &QSlider::sliderReleased, this, [this] {
+    if (m_levels) emit speedAccuracyChosen(m_slider->value());
+  });
   connect(m_slider, &QSlider::actionTriggered, this, [this](int action) {
-    if (action != QAbstractSlider::SliderMove)
+    if (m_levels && action != QAbstractSlider::SliderMove)
       QMetaObject::invokeMethod(
           this, [this] { emit speedAccuracyChosen(m_slider->value()); }, Qt::QueuedConnection);
   });
@@ -79,7 +88,7 @@ SimulationPanel::SimulationPanel(const SimulationActions& actions, QWidget* pare
 }
 
 void SimulationPanel::showSettings(const Settings& settings) {
-  {
+  if (m_levels) {
     const QSignalBlocker blocker(m_slider);
     m_slider->setValue(nearestSpeedAccuracyLevel(settings));
   }
@@ -88,14 +97,22 @@ void SimulationPanel::showSettings(const Settings& settings) {
 }
 
 void SimulationPanel::describeLevel(int level) {
-  const SpeedAccuracyLevel& l = speedAccuracyLevels().at(level);
-  QString text = QStringLiteral("<b>%1</b>: ").arg(QString::fromStdString(l.name));
+  if (!m_levels) {
+    m_levelLabel->setText(tr("<b>No speed/accuracy levels</b>: %1").arg(m_levelsError.toHtmlEscaped()));
+    m_slider->setToolTip(m_levelLabel->text());
+    return;
+  }
+  // "<b>Fast</b>: about 4 s to rest, 1.2 mm from the reference on the default scene" (what the level costs and buys,
+  // measured), then the settings it sets.
+  const SpeedAccuracyLevel& l = m_levels->at(level);
   QStringList parts;
   for (const auto& [key, value] : l.settings)
     parts << QStringLiteral("%1 = %2").arg(
         QString::fromStdString(key.rfind("solver.", 0) == 0 ? key.substr(7) : key.substr(key.find('.') + 1)),
         QString::fromStdString(value));
-  m_levelLabel->setText(text + parts.join(", "));
+  m_levelLabel->setText(QStringLiteral("<b>%1</b>: %2<br>%3")
+                            .arg(QString::fromStdString(l.name).toHtmlEscaped(),
+                                 QString::fromStdString(l.summary).toHtmlEscaped(), parts.join(", ").toHtmlEscaped()));
   m_slider->setToolTip(m_levelLabel->text());
 }
 
