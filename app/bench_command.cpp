@@ -170,7 +170,10 @@ int runBench(const CliOptions& options, std::ostream& out) {
     referenceConfig.settings.emplace_back("mesh.target_edge_length", finest);
   const std::string key = trade::referenceKey(base, referenceConfig);
   const bool kept = !options.reference.empty() && std::filesystem::exists(options.reference);
-  const size_t total = configs.size() + (kept ? 0 : 1);
+  // Every run --rounds times, the rounds interleaved (each round runs every setting once), so that a drift of the
+  // machine's speed reaches every setting alike; a run's wall time is its fastest round's.
+  const int rounds = options.rounds;
+  const size_t total = configs.size() * rounds + (kept ? 0 : 1);
   size_t done = 0;
   const auto start = std::chrono::steady_clock::now();
   auto progress = [&](const TradeOutcome& r) {
@@ -196,10 +199,19 @@ int runBench(const CliOptions& options, std::ostream& out) {
       trade::writeReference(options.reference, reference, key);
   }
   std::vector<TradeOutcome> runs = {reference};
-  for (const TradeConfig& c : configs) {
-    runs.push_back(trade::runTrade(base, c));
-    progress(runs.back());
-  }
+  std::vector<std::vector<double>> walls = {{reference.wallSeconds}};
+  for (int round = 0; round < rounds; ++round)
+    for (size_t c = 0; c < configs.size(); ++c) {
+      TradeOutcome r = trade::runTrade(base, configs[c]);
+      progress(r);
+      if (round == 0) {
+        runs.push_back(std::move(r));
+        walls.push_back({runs.back().wallSeconds});
+      } else {
+        walls[c + 1].push_back(r.wallSeconds);
+        runs[c + 1].wallSeconds = std::min(runs[c + 1].wallSeconds, r.wallSeconds);
+      }
+    }
 
   std::vector<trade::Distances> distances;
   std::vector<std::pair<double, double>> points;
@@ -219,6 +231,7 @@ int runBench(const CliOptions& options, std::ostream& out) {
   nlohmann::json report = {{"scene", options.scene.input.string()},
                            {"name", sceneName(options.scene)},
                            {"stage", stage},
+                           {"rounds", rounds},
                            {"reference",
                             {{"settings", referenceSettings},
                              {"stage", referenceConfig.stage},
@@ -243,6 +256,7 @@ int runBench(const CliOptions& options, std::ostream& out) {
                   d.maxMm, vertexMean, 100 * r.maxStrain, r.insideVertices, r.status.c_str(), front[i] ? "yes" : "");
     out << line;
     nlohmann::json row = runRow(r, d);
+    row["wall_times_s"] = walls[i];
     row["pareto"] = static_cast<bool>(front[i]);
     report["runs"].push_back(row);
   }

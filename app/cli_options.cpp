@@ -63,7 +63,7 @@ std::string usageText() {
   drape --render BODY.(obj|glb|gltf|fbx|ply|stl) -o OUT.png [--avatar-units U] [--view V] [--size WxH]
                                           render a body mesh on its own (mannequin previews)
   drape --bench SCENE [--solver preview|drape|full] [--sweep KEY=V1,V2,...]... [--levels] [--reference REF.json]
-        [-o REPORT.json] [--plot TRADE.png] [--max-sim-time S]
+        [--rounds N] [-o REPORT.json] [--plot TRADE.png] [--max-sim-time S]
                                           speed/accuracy trade: each sweep value (and level) against a tight reference
                                           drape, kept in REF.json and reused when it exists (docs/TRADE.md)
   drape --trade-plot REPORT.json... -o TRADE.png
@@ -192,6 +192,8 @@ CliOptions parseCommandLine(int argc, char** argv) {
       o.reference = value(i, a);
     } else if (a == "--plot") {
       o.plot = value(i, a);
+    } else if (a == "--rounds") {
+      o.rounds = count(value(i, a), a, "rounds", 100);
     } else if (a == "--trade-plot") {
       setMode(Mode::TradePlot, a);
     } else if (a == "--trade-levels") {
@@ -281,10 +283,11 @@ CliOptions parseCommandLine(int argc, char** argv) {
     throw InputError("--list, --gather, --slurm, --shard: one at a time");
   if (o.extremes && (o.mode != Mode::Bench || !o.sweeps.empty() || o.levels))
     throw InputError("--extremes: only with --bench, and not with --sweep or --levels");
-  if ((o.levels || !o.reference.empty() || !o.plot.empty() || !o.sweeps.empty()) && o.mode != Mode::Bench)
-    throw InputError("--sweep, --levels, --reference, --plot: only with --bench");
-  if (o.extremes && (!o.reference.empty() || !o.plot.empty()))
-    throw InputError("--reference, --plot: not with --extremes");
+  if ((o.levels || !o.reference.empty() || !o.plot.empty() || !o.sweeps.empty() || o.rounds != 1) &&
+      o.mode != Mode::Bench)
+    throw InputError("--sweep, --levels, --reference, --plot, --rounds: only with --bench");
+  if (o.extremes && (!o.reference.empty() || !o.plot.empty() || o.rounds != 1))
+    throw InputError("--reference, --plot, --rounds: not with --extremes");
   if (!o.from.empty() && o.mode != Mode::Simulate && o.mode != Mode::Render)
     throw InputError("--from: only with --simulate or --render");
   return o;

@@ -43,6 +43,7 @@ struct CliOptions {
   bool levels = false;                 // --levels (bench): run the speed/accuracy level candidates
   std::string reference;               // --reference FILE (bench): the reference drape, kept there and reused
   std::string plot;                    // --plot FILE.png (bench): the report's Pareto plot
+  int rounds = 1;                      // --rounds N (bench): every run N times, interleaved; the fastest counts
   std::vector<std::string> reports;    // the trade reports of --trade-plot and --trade-levels
   std::string batch;                   // --batch MANIFEST.json
   int jobs = 0;                        // --jobs N (batch): jobs at a time; 0: the core count

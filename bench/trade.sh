@@ -7,6 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 drape=build/app/drape
+rounds="--rounds 2"  # every run twice, interleaved; the faster round counts
 mkdir -p build/trade docs/trade
 shared=../shared/data/garmentcode
 
@@ -39,19 +40,19 @@ for s in "${scenes[@]}"; do
   args=$(scene_args "$s")
   mesh=$(library_mesh "$s")
   # shellcheck disable=SC2086
-  $drape --bench $args --solver drape $drape_sweeps $mesh --reference "build/trade/$s.ref.json" \
+  $drape --bench $args --solver drape $drape_sweeps $mesh $rounds --reference "build/trade/$s.ref.json" \
     -o "docs/trade/${s}_drape.json"
   # shellcheck disable=SC2086
-  $drape --bench $args --solver preview $preview_sweeps $mesh --reference "build/trade/$s.ref.json" \
+  $drape --bench $args --solver preview $preview_sweeps $mesh $rounds --reference "build/trade/$s.ref.json" \
     -o "docs/trade/${s}_preview.json"
   # shellcheck disable=SC2086
-  $drape --bench $args --solver full $full_sweeps $mesh --reference "build/trade/$s.ref.json" \
+  $drape --bench $args --solver full $full_sweeps $mesh $rounds --reference "build/trade/$s.ref.json" \
     -o "docs/trade/${s}_full.json"
   # The slider's level candidates (assets/trade/level_candidates.json), on the library garments only.
   if [ "$s" != shirt ]; then
     mkdir -p docs/trade/levels
     # shellcheck disable=SC2086
-    $drape --bench $args --solver drape --levels --reference "build/trade/$s.ref.json" -o "docs/trade/levels/$s.json"
+    $drape --bench $args --solver drape --levels $rounds --reference "build/trade/$s.ref.json" -o "docs/trade/levels/$s.json"
   fi
 done
 for stage in drape preview full; do

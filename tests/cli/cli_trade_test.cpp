@@ -116,10 +116,20 @@ TEST(CliTrade, AKeptReferenceIsReusedAndRefusedForAnotherScene) {
   ASSERT_EQ(first.exitCode, 0) << first.err << first.out;
   ASSERT_TRUE(std::filesystem::exists(reference));
   EXPECT_NE(first.out.find("[3/3]"), std::string::npos) << first.out;
-  auto again = drape("--bench " + scene() + kCoarse + sweep);
+  // Again, each setting twice in interleaved rounds: the reference is not run again, and a run's wall time is its
+  // fastest round's.
+  const auto report = kScratch / "trade_rounds.json";
+  auto again = drape("--bench " + scene() + kCoarse + sweep + " --rounds 2 -o " + quote(report.string()));
   ASSERT_EQ(again.exitCode, 0) << again.err << again.out;
   EXPECT_NE(again.out.find("reference: "), std::string::npos) << again.out;
-  EXPECT_NE(again.out.find("[2/2]"), std::string::npos) << again.out;  // the reference is not run again
+  EXPECT_NE(again.out.find("[4/4]"), std::string::npos) << again.out;
+  const auto j = nlohmann::json::parse(readWhole(report));
+  EXPECT_EQ(j.at("rounds"), 2);
+  for (const auto& run : j.at("runs")) {
+    const auto walls = run.at("wall_times_s").get<std::vector<double>>();
+    ASSERT_EQ(walls.size(), run.at("run") == "reference" ? 1u : 2u) << run.at("run");
+    EXPECT_EQ(run.at("wall_time_s").get<double>(), *std::min_element(walls.begin(), walls.end()));
+  }
   auto other = drape("--bench " + scene() + " --set mesh.target_edge_length=0.25 --max-sim-time 0.01" + sweep);
   EXPECT_EQ(other.exitCode, 1) << other.out;
   EXPECT_EQ(lineCount(other.err), 1) << other.err;
@@ -137,6 +147,7 @@ TEST(CliTrade, BadSweepsAreRefusedWithOneLine) {
       {"--sweep h_max", "is not KEY=V1,V2"},
       {"--solver none", "simulates nothing"},
       {"--plot trade.svg", ".png"},
+      {"--rounds 0", "--rounds"},
   };
   for (const auto& [args, expected] : cases) {
     auto r = drape("--bench " + scene() + kCoarse + " " + args);
