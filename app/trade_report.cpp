@@ -44,9 +44,14 @@ void plotTradeReports(const std::vector<nlohmann::json>& reports, const std::fil
   for (const auto& report : reports) {
     qt::TradeSeries s;
     s.name = report.value("name", std::string("scene")) + " (" + report.value("stage", std::string("drape")) + ")";
-    for (const auto& r : report["runs"])
-      s.points.push_back({r.value("run", std::string()), r.value("wall_time_s", 0.0), r.value("mean_distance_mm", 0.0),
-                          r.value("pareto", false)});
+    // Labelled: the front and the scene's own settings; the "solver." of a setting's key left out.
+    for (const auto& r : report["runs"]) {
+      std::string label = r.value("run", std::string());
+      if (label.rfind("solver.", 0) == 0) label = label.substr(7);
+      const bool front = r.value("pareto", false);
+      if (!front && label != "default") label.clear();
+      s.points.push_back({label, r.value("wall_time_s", 0.0), r.value("mean_distance_mm", 0.0), front});
+    }
     series.push_back(std::move(s));
   }
   qt::writeTradePlot(series, "Speed / accuracy trade", file);

@@ -1,4 +1,4 @@
-// The speed/accuracy trade plot (issue #48): a PNG of the asked size with each scene's points in its colour, the
+// The speed/accuracy trade plot: a PNG of the asked size with each scene's points in its colour, the
 // point labels and the Pareto fronts drawn; bad file names are refused with the file named.
 #include "drape/qt/trade_plot.h"
 

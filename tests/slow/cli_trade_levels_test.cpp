@@ -16,7 +16,9 @@ namespace {
 TEST(CliTrade, LevelsRunEveryCandidateAndTradeLevelsKeepsTheFront) {
   const auto report = kScratch / "levels_report.json", levels = kScratch / "levels.json";
   const std::string patch = quote((testDataDir() / "patterns" / "circle_patch.json").string());
-  auto r = drape("--bench " + patch + " --max-sim-time 0.005 --levels -o " + quote(report.string()));
+  // Meshed at 2 cm, so that the candidates' finest mesh (1 cm) is the reference's.
+  auto r = drape("--bench " + patch + " --set mesh.target_edge_length=0.02 --max-sim-time 0.005 --levels -o " +
+                 quote(report.string()));
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   const auto candidates = nlohmann::json::parse(readWhole(assetsDir() / "trade" / "level_candidates.json"));
   const auto j = nlohmann::json::parse(readWhole(report));

@@ -48,7 +48,10 @@ StepReport firstDrapeStep(Simulation& sim, double* handoffTime) {
 
 TEST(PipelineHandoff, DrapeFromThePreviewSkipsTheInitialRelaxation) {
   const std::pair<std::string, std::string> shortPreview{"solver.preview.max_time", "0.05"};
-  Simulation plain(coarseTablecloth({shortPreview}));
+  // At the paper's 1 ms step limit the coarse tablecloth's drape grows without a split, so that the growth rule
+  // alone sets the step count.
+  const std::pair<std::string, std::string> paperStep{"solver.newton.h_max", "1e-3"};
+  Simulation plain(coarseTablecloth({shortPreview, paperStep}));
   double t0 = 0.0;
   const StepReport first = firstDrapeStep(plain, &t0);
   EXPECT_EQ(first.stage, Stage::Drape);
@@ -76,11 +79,11 @@ TEST(PipelineHandoff, DrapeFromThePreviewSkipsTheInitialRelaxation) {
   EXPECT_EQ(steps, growAfter * growths + 1);
   for (int k = 0; k < 10; ++k) EXPECT_DOUBLE_EQ(plain.step().h, settleStep);
 
-  Simulation relaxed(coarseTablecloth({shortPreview, {"solver.newton.relaxation_after_preview", "true"}}));
+  Simulation relaxed(coarseTablecloth({shortPreview, paperStep, {"solver.newton.relaxation_after_preview", "true"}}));
   const StepReport firstRelaxed = firstDrapeStep(relaxed, &t0);
   EXPECT_DOUBLE_EQ(firstRelaxed.h, settleStep / 16.0);
 
-  Simulation unscaled(coarseTablecloth({shortPreview, {"solver.newton.h_max_factor_after_preview", "1"}}));
+  Simulation unscaled(coarseTablecloth({shortPreview, paperStep, {"solver.newton.h_max_factor_after_preview", "1"}}));
   EXPECT_DOUBLE_EQ(firstDrapeStep(unscaled, &t0).h, unscaled.scene().settings.number("solver.newton.h_max"));
 
   // A drape from the placed garment keeps its relaxation.

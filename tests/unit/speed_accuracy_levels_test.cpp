@@ -1,7 +1,7 @@
-// The speed <-> accuracy levels from trade reports (issue #48): the sample reports of tests/data/trade (two scenes,
-// four candidates, "Wasteful" slower and less accurate than "Fast" on both) give the Pareto front fastest first
-// with the reference scene's numbers; bad reports and levels files are refused with a line naming the report or file
-// and the level; the committed assets/trade/speed_accuracy_levels.json is what the committed docs/trade reports give.
+// The speed <-> accuracy levels from trade reports: the sample reports of tests/data/trade (two scenes, four
+// candidates, "Wasteful" slower and less accurate than "Fast" on both) give the Pareto front fastest first with the
+// reference scene's numbers; bad reports and levels files are refused with a line naming the report or file and the
+// level; the committed assets/trade/speed_accuracy_levels.json is what the committed docs/trade/levels reports give.
 #include "drape/trade/speed_accuracy_levels.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Point-to-surface distance (issue #48) against independent computations: a tilted plate meshed at two
+// Point-to-surface distance against independent computations: a tilted plate meshed at two
 // resolutions (distance 0) and shifted along its normal (the shift); icospheres at two resolutions, bounded by the
 // sagitta of the coarse mesh's triangles; points beyond an edge and a corner of an open plate (hand-computed
 // Euclidean distances); random points against a brute-force minimum over all triangles; bad surfaces.

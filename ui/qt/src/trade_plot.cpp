@@ -292,6 +292,7 @@ void writeTradePlot(const std::vector<TradeSeries>& series, const std::string& t
     for (const auto& p : s->points) {
       std::string text = p.label;
       if (p.distanceMm <= 0.0 && !saysReference(text)) text += text.empty() ? "reference" : " (reference)";
+      if (text.empty()) continue;  // an unlabelled point
       labels.push_back(
           {QString::fromStdString(text), chart->mapToPosition(QPointF(p.wallSeconds, y(p)), scatter), colour});
     }

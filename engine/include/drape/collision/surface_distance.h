@@ -1,6 +1,6 @@
 #pragma once
 // Unsigned point-to-surface distance against a triangle mesh (any triangles: open or closed, oriented or not),
-// for comparing a drape with a reference drape meshed at another resolution (issue #48): each reference vertex
+// for comparing a drape with a reference drape meshed at another resolution: each reference vertex
 // is measured against the other drape's surface, not against a corresponding vertex. The nearest triangle is
 // found by branch and bound over an LBVH of the triangle boxes (collision/bvh.h); the per-triangle distance is
 // the exact closest point of collision/distance.h. Lengths in metres.

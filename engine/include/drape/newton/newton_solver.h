@@ -22,7 +22,7 @@ struct NewtonSettings {
   int maxLineSearchIterations = 5;  // I_ls
   bool projectHessians = true;    // SPD membrane/bending Hessians; false = exact (may be indefinite; tests)
   LinearSolveOptions linear;      // tau_cg = 1e-2, 500 iterations, block-Jacobi PCG
-  double hMax = 1e-3;             // s
+  double hMax = 1e-3;             // s: the paper's; a scene's solver.newton.h_max (2 ms, docs/TRADE.md) sets it
   double hMin = 1e-8;             // s; a step that fails below this is Diverged
   double omega = 0.75;            // time-splitting factor
   int growAfterSteps = 5;         // I_s: good steps before h grows by 1/omega

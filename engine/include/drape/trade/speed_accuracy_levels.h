@@ -1,5 +1,5 @@
 #pragma once
-// The levels of the GUI's speed <-> accuracy slider, chosen from measurements (issue #48). `drape --bench SCENE
+// The levels of the GUI's speed <-> accuracy slider, chosen from measurements. `drape --bench SCENE
 // --levels` drapes every candidate of assets/trade/level_candidates.json and writes one trade report per scene;
 // levelsFromReports keeps the candidates that no other candidate beats on both total wall time and total distance
 // to the reference drapes, and `drape --trade-levels` writes them to assets/trade/speed_accuracy_levels.json, which

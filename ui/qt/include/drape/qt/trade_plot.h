@@ -1,5 +1,5 @@
 #pragma once
-// The speed <-> accuracy trade of issue #48 as a picture: a scatter plot of wall time against the distance of each
+// The speed <-> accuracy trade as a picture: a scatter plot of wall time against the distance of each
 // run's drape to the reference drape, one colour per scene, with each scene's Pareto front drawn through it.
 #include <filesystem>
 #include <string>
@@ -8,7 +8,7 @@
 namespace drape::qt {
 
 struct TradePoint {
-  std::string label;         // e.g. "solver.newton.h_max=2e-3", "reference", a level name "Fast"
+  std::string label;         // e.g. "solver.newton.h_max=2e-3", "reference", a level name "Fast"; empty: none
   double wallSeconds = 0.0;  // x: wall time of the run, seconds (> 0, finite)
   double distanceMm = 0.0;   // y: mean distance of the run's drape to the reference drape, mm (>= 0; the reference: 0)
   bool pareto = false;       // on the Pareto front of its series (computed by the caller)
