@@ -35,7 +35,7 @@ struct TradeOutcome {
   bool atRest() const { return status == "AtRest"; }
 };
 
-// The reference: the Newton drape with a 4x smaller step limit and 10-100x tighter tolerances than the defaults
+// The reference: the Newton drape with an 8x smaller step limit and 10-100x tighter tolerances than the defaults
 // (h_max 2.5e-4 s, tau_n 1e-5, tau_cg 1e-4) on the scene's own mesh (drape --bench puts it on the finest mesh of its
 // runs, so that it resolves what they resolve).
 TradeConfig referenceConfig();
