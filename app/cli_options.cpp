@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "drape/core/input_error.h"
+#include "drape/sim/extremes_grid.h"
 
 namespace drape::app {
 namespace {
@@ -70,10 +71,11 @@ std::string usageText() {
                                           the Pareto plot of trade reports, one series per scene
   drape --trade-levels REPORT.json... -o LEVELS.json
                                           the GUI's speed/accuracy levels: the candidates on the reports' Pareto front
-  drape --bench SCENE --extremes [--solver preview|drape|full] [-o REPORT.json] [--max-sim-time S]
+  drape --bench SCENE --extremes [--solver preview|drape|full] [--cell NAME]... [-o REPORT.json] [--max-sim-time S]
                                           every physics setting at both ends of its range (and the hard
                                           combinations) in each stage: finite, diverged only when said why,
-                                          nothing inside the body (exit 1 when a cell fails)
+                                          nothing inside the body (exit 1 when a cell fails); --cell runs only
+                                          the cells named (e.g. "stretch max")
   drape --make-avatar MEASUREMENTS.(yaml|json) -o AVATAR.(obj|glb)
                                           a smooth watertight mannequin from body measurements (cm)
   drape --batch MANIFEST.json -o OUTDIR [--jobs N] [--list]
@@ -186,6 +188,8 @@ CliOptions parseCommandLine(int argc, char** argv) {
       o.sweeps.push_back(value(i, a));
     } else if (a == "--extremes") {
       o.extremes = true;
+    } else if (a == "--cell") {
+      o.cells.push_back(value(i, a));
     } else if (a == "--levels") {
       o.levels = true;
     } else if (a == "--reference") {
@@ -288,6 +292,12 @@ CliOptions parseCommandLine(int argc, char** argv) {
     throw InputError("--sweep, --levels, --reference, --plot, --rounds: only with --bench");
   if (o.extremes && (!o.reference.empty() || !o.plot.empty() || o.rounds != 1))
     throw InputError("--reference, --plot, --rounds: not with --extremes");
+  if (!o.cells.empty() && !o.extremes) throw InputError("--cell: only with --bench --extremes");
+  for (const std::string& name : o.cells) {
+    const auto all = extremeCells();
+    if (std::none_of(all.begin(), all.end(), [&](const ExtremeCell& c) { return c.name == name; }))
+      throw InputError("--cell: no extremes cell '" + name + "' (the cells are the first column of --extremes)");
+  }
   if (!o.from.empty() && o.mode != Mode::Simulate && o.mode != Mode::Render)
     throw InputError("--from: only with --simulate or --render");
   return o;

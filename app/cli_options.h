@@ -40,6 +40,7 @@ struct CliOptions {
   std::string from;                    // --from STATE.obj (simulate, render): the stage starts at its positions
   std::vector<std::string> sweeps;     // --sweep KEY=V1,V2 (bench)
   bool extremes = false;               // --extremes (bench): the extremes grid instead of the trade
+  std::vector<std::string> cells;      // --cell NAME (extremes): only these cells; none: all
   bool levels = false;                 // --levels (bench): run the speed/accuracy level candidates
   std::string reference;               // --reference FILE (bench): the reference drape, kept there and reused
   std::string plot;                    // --plot FILE.png (bench): the report's Pareto plot

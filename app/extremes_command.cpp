@@ -1,6 +1,7 @@
 // drape --bench SCENE --extremes: the extremes grid (drape/sim/extremes_grid.h) on one scene, one line per cell and
 // stage as it finishes, then a JSON report (-o). Each run has at most --max-sim-time (0.5 s) simulated and
 // kMaxSteps steps, so that the smallest time step in its range ends at the step limit instead of running for hours.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -23,7 +24,11 @@ int runExtremes(const CliOptions& options, std::ostream& out) {
       options.solver.empty() ? std::vector<std::string>{"drape", "preview", "full"}
                              : std::vector<std::string>{options.solver};
   const double simTime = options.maxSimTime > 0.0 ? options.maxSimTime : kDefaultSimTime;
-  const std::vector<ExtremeCell> cells = extremeCells();
+  std::vector<ExtremeCell> cells = extremeCells();
+  if (!options.cells.empty())  // names checked by the option parser
+    std::erase_if(cells, [&](const ExtremeCell& c) {
+      return std::find(options.cells.begin(), options.cells.end(), c.name) == options.cells.end();
+    });
   const size_t total = cells.size() * stages.size();
   nlohmann::json report = {{"scene", options.scene.input.string()},
                            {"max_sim_time_s", simTime},

@@ -38,5 +38,26 @@ TEST(CliBench, ExtremesGridReportsEveryCellAndItsVerdict) {
   EXPECT_NE(both.err.find("--extremes: only with --bench, and not with --sweep"), std::string::npos) << both.err;
 }
 
+TEST(CliBench, ExtremesCellRunsOnlyTheCellsNamed) {
+  // --cell reruns chosen cells: only those, in every stage asked for; a name that is no cell, or --cell without
+  // --extremes, is refused with one line before anything runs.
+  const auto report = kScratch / "extremes_cells.json";
+  auto r = drape("--bench " + asset("scenes/hanging_cloth.json") +
+                 " --set mesh.target_edge_length=0.2 --extremes --solver drape --max-sim-time 0.01 --cell \"bending max\""
+                 " --cell \"time step min\" -o " + quote(report.string()));
+  const auto j = nlohmann::json::parse(readWhole(report));
+  const auto& cells = j.at("cells");
+  ASSERT_EQ(cells.size(), 2u) << r.out;
+  EXPECT_EQ(cells[0].at("cell"), "bending max");
+  EXPECT_EQ(cells[1].at("cell"), "time step min");
+  EXPECT_NE(r.out.find("of 2 cells hold"), std::string::npos) << r.out;
+  auto unknown = drape("--bench " + asset("scenes/hanging_cloth.json") + " --extremes --cell \"bending maximum\"");
+  EXPECT_EQ(unknown.exitCode, 1);
+  EXPECT_NE(unknown.err.find("--cell: no extremes cell 'bending maximum'"), std::string::npos) << unknown.err;
+  auto alone = drape("--bench " + asset("scenes/hanging_cloth.json") + " --cell \"bending max\"");
+  EXPECT_EQ(alone.exitCode, 1);
+  EXPECT_NE(alone.err.find("--cell: only with --bench --extremes"), std::string::npos) << alone.err;
+}
+
 }  // namespace
 }  // namespace drape::test

@@ -1,7 +1,7 @@
 // The extremes grid (drape/sim/extremes_grid.h) on a real garment: the library t-shirt on the female mannequin, every
 // cell in the drape for the first 0.05 s (the seams closing, where the extremes bite first). Every cell must hold:
 // finite, diverged only where the garment exploded and the run said so, nothing inside the body beyond the contact
-// thickness. (The projective preview fails three cells, docs/EXTREMES.md.) The grid's cells themselves are checked in
+// thickness. The grid's cells themselves are checked in
 // tests/unit/extremes_grid_test.cpp.
 #include <gtest/gtest.h>
 
@@ -15,10 +15,9 @@
 namespace drape::test {
 namespace {
 
-// Cells the drape does not hold yet (docs/EXTREMES.md): the stiffest stretch (1e7 N/m) leaves vertices inside the
-// body beyond the contact thickness. It is run and reported, and fails the test when it comes to hold, so that this
-// list is kept true.
-const std::set<std::string> kOpen = {"stretch max"};
+// Cells the drape does not hold (docs/EXTREMES.md): none. A cell listed here is run and reported, and fails the
+// test when it comes to hold, so that this list is kept true.
+const std::set<std::string> kOpen = {};
 
 TEST(ExtremesGrid, LibraryTshirtHoldsInEveryCell) {
   SceneRequest base;

@@ -131,6 +131,39 @@ TEST(PdContactTarget, DofStartingDeepInsideIsPushedOutToTheClosestSurface) {
   }
 }
 
+TEST(PdContactTarget, StepEndPutsVerticesLeftDeepInsideBackOnTheSurface) {
+  // The slab's top is y = 0. Six DOFs, from their step start to their end positions; thickness 4 mm.
+  AvatarContactOptions o;
+  o.thickness = 0.004;
+  o.margin = 0.02;
+  AvatarContacts contacts(slab(), o);
+  Eigen::MatrixX3d start(6, 3), end(6, 3);
+  start.row(0) << 0.1, 0.01, 0.2;    // ends 5 mm inside: lifted straight up to the thickness
+  end.row(0) << 0.12, -0.005, 0.19;
+  start.row(1) << -0.1, 0.3, 0.1;    // falls 0.3 m into the slab in one step, ends 15 mm inside
+  end.row(1) << -0.15, -0.015, 0.12;
+  start.row(2) << 0.2, 0.01, 0.0;    // ends 3 mm inside, within the thickness: the constraints' business
+  end.row(2) << 0.2, -0.003, 0.0;
+  start.row(3) << 0.3, 0.5, 0.0;     // far above
+  end.row(3) << 0.3, 0.45, 0.0;
+  start.row(4) << 0.0, -0.1, 0.0;    // placed deep inside, beyond the reach: left to the constraints
+  end.row(4) << 0.0, -0.1, 0.0;
+  start.row(5) << -0.3, 0.01, 0.0;   // 10 mm inside, but skipped (on a seam still closing)
+  end.row(5) << -0.3, -0.01, 0.0;
+  const std::vector<int> free = {0, 1, 2, 3, 4, 5};
+  contacts.beginStep(start, start, free);
+  Eigen::MatrixX3d x = end;
+  const std::vector<char> skip = {0, 0, 0, 0, 0, 1};
+  EXPECT_EQ(contacts.resolve(x, free, &skip), 2);
+  EXPECT_LT((x.row(0) - Eigen::RowVector3d(0.12, 0.004, 0.19)).norm(), 1e-12);
+  EXPECT_LT((x.row(1) - Eigen::RowVector3d(-0.15, 0.004, 0.12)).norm(), 1e-12);
+  for (int d = 2; d < 6; ++d) EXPECT_EQ(x.row(d), end.row(d)) << d;
+  // Without the mask the skipped one is lifted too.
+  x = end;
+  EXPECT_EQ(contacts.resolve(x, free), 3);
+  EXPECT_LT((x.row(5) - Eigen::RowVector3d(-0.3, 0.004, 0.0)).norm(), 1e-12);
+}
+
 TEST(PdContactTarget, CreaseTargetLiesInBothHalfSpaces) {
   // A vertex in the valley's crease, pushed down into it: the first version jumps to one side's surface (inside
   // the other side's thickness); the half-spaces put it thickness away from both sides.

@@ -55,6 +55,27 @@ TEST(RealGarmentDrape, AvatarPenaltyIsStifferInsideTheBody) {
   EXPECT_GT(g.norm(), 100.0);
 }
 
+// A fabric that cannot stretch passes the stitches' pull on to the body: inside, the penalty is raised to 5 x the
+// stiffest fabric's stretch stiffness (the library t-shirt in a 1e7 N/m fabric, tests/slow/extremes_grid_tshirt_test.cpp).
+TEST(RealGarmentDrape, InsidePenaltyOutweighsTheStiffestFabric) {
+  newton::ContactParameters params;
+  params.stiffness = 1e3;  // contact.stiffness's default
+  EXPECT_EQ(newton::insideStiffnessFactorFor(params, 2e4), params.insideStiffnessFactor);  // the stiffest preset
+  const double factor = newton::insideStiffnessFactorFor(params, 1e7);
+  EXPECT_NEAR(factor * params.stiffness, 5e7, 1e-6);
+  auto sphere = std::make_shared<const collision::AvatarCollider>(makeIcosphere(Eigen::Vector3d::Zero(), 0.3, 3));
+  params.insideStiffnessFactor = factor;
+  const Eigen::Vector3d p(0.0, 0.29, 0.0);
+  const double d = sphere->signedDistance(p);
+  ASSERT_LT(d, -0.005);
+  newton::AvatarContactEnergy energy(sphere, 1, params);
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(3);
+  energy.addGradient(p, g);
+  EXPECT_GE(g.norm(), 5.0 * 1e7 * -d);
+  params.stiffness = 0.0;  // no penalty: nothing to scale
+  EXPECT_EQ(newton::insideStiffnessFactorFor(params, 1e7), params.insideStiffnessFactor);
+}
+
 TEST(RealGarmentDrape, ShirtOnGeneratedFemaleMannequin) {
   DRAPE_SHARED_FILE(shirt, "garmentcode/shirt_mean_specification.json");
   // 0.4 s: the shirt has settled on the shoulders by 0.2 s (the seams close during the 0.1 s relaxation).

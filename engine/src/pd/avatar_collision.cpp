@@ -245,6 +245,28 @@ char AvatarContacts::constrainToPlanes(int d, const Eigen::Vector3d& x, Eigen::V
   return kind;
 }
 
+int AvatarContacts::resolve(Eigen::MatrixX3d& x, const std::vector<int>& freeVertices,
+                            const std::vector<char>* skip) const {
+  const int nf = static_cast<int>(freeVertices.size());
+  if (static_cast<int>(m_bound.size()) != nf) return 0;
+  const double thickness = m_options.thickness;
+  const double reach = thickness + m_options.margin;
+  std::vector<char> moved(nf, 0);
+  tbb::parallel_for(0, nf, [&](int d) {
+    if (skip && (*skip)[d]) return;
+    const Eigen::Vector3d p1 = x.row(freeVertices[d]).transpose();
+    // Outside at the start by at least the bound, and moved less than the bound plus the thickness: not that deep.
+    if (!m_startInside[d] && (p1 - m_freeStart.row(d).transpose()).norm() < m_bound[d] + thickness) return;
+    collision::SurfacePoint sp;
+    if (!m_collider->closest(p1, sp, reach) || sp.signedDistance >= -thickness) return;
+    x.row(freeVertices[d]) = (sp.closest + thickness * sp.normal).transpose();
+    moved[d] = 1;
+  });
+  int count = 0;
+  for (char m : moved) count += m;
+  return count;
+}
+
 AvatarContactStats AvatarContacts::addConstraints(const Eigen::MatrixX3d& xFree, ContactAccumulator& acc) {
   // Watched DOFs (header). The bound is a distance at the step start: a DOF that moved by s is at least
   // bound - s from the surface, and a segment shorter than its start's distance cannot cross it.

@@ -109,6 +109,7 @@ struct PreviewSolver::Impl {
   int dragDof = -1;  // free DOF of the grabbed vertex, -1 = none
   Eigen::Vector3d dragTarget = Eigen::Vector3d::Zero();
   std::unique_ptr<AvatarContacts> avatar;  // null without a collider
+  std::vector<char> seamClosing;            // per free DOF: on a stitch still open at the step's end (scratch)
   std::unique_ptr<ClothContacts> cloth;    // null unless settings.selfCollision
   ContactAccumulator accumulator;
   ContactWarmStart contactWarm;       // last contact forces (settings.contactWarmStart)
@@ -123,6 +124,14 @@ struct PreviewSolver::Impl {
   PreviewReport attempt();
   // Makes level k (time step settings.timeStep / 2^k) current, building it on first use.
   void useLevel(int k);
+  // seamClosing: the free DOFs on a stitch whose sides are still farther apart than kClosingSeamGap contact
+  // thicknesses at x. Such a vertex is pulled across the body by its seam, and the step-end fail-safe leaves it to
+  // the constraints: putting it back on the surface alone, while its partner is pulled on, stretches the triangles
+  // between them (docs/EXTREMES.md: with every seam vertex included, GarmentCode's shirt hands over a triangle
+  // stretched to 449 % and its preview starts over; with seams counted open from one thickness, a seam vertex of
+  // the shirt in its stiffest bending sinks 40 mm into the shoulder).
+  static constexpr double kClosingSeamGap = 4.0;
+  void markClosingSeams();
   // Appends the grabbed vertex's constraint (replacing a contact on the same DOF).
   void addDrag(ContactSet& contacts) const;
   // Contact constraints of one L-G iteration: vertices at the collision-free xFree (|free| x 3), cloth triangles
@@ -219,6 +228,20 @@ void PreviewSolver::Impl::resolveClothContacts(const Eigen::MatrixX3d& start, Pr
   const ClothResolveStats st = cloth->resolve(start, x, inverseMass);
   rep.selfResolved = st.violations;
   rep.selfCrossed = st.remaining;
+}
+
+void PreviewSolver::Impl::markClosingSeams() {
+  const auto& dof = system->dofOfVertex();
+  seamClosing.assign(system->freeCount(), 0);
+  const double open = kClosingSeamGap * settings.contactThickness, open2 = open * open;
+  const auto mark = [&](int vtx) {
+    if (dof[vtx] >= 0) seamClosing[dof[vtx]] = 1;
+  };
+  for (const auto& [a, b] : model.stitches)
+    if ((x.row(a) - x.row(b)).squaredNorm() > open2) mark(a), mark(b);
+  for (const model::EdgeStitch& e : model.edgeStitches)
+    if ((x.row(e.vertex) - (1.0 - e.t) * x.row(e.a) - e.t * x.row(e.b)).squaredNorm() > open2)
+      mark(e.vertex), mark(e.a), mark(e.b);
 }
 
 void PreviewSolver::Impl::useLevel(int k) {
@@ -400,6 +423,13 @@ PreviewReport PreviewSolver::Impl::attempt() {
   if (cloth && (rep.status == PreviewStatus::Converged || rep.status == PreviewStatus::MaxIterations)) {
     const auto t0 = Clock::now();
     resolveClothContacts(xPrev, rep);
+    rep.collisionTime += seconds(t0, Clock::now());
+  }
+  // Last, so that nothing moves a vertex back into the body after it: the body is the harder invariant.
+  if (avatar && (rep.status == PreviewStatus::Converged || rep.status == PreviewStatus::MaxIterations)) {
+    const auto t0 = Clock::now();
+    markClosingSeams();
+    rep.avatarResolved = avatar->resolve(x, freeVertices, &seamClosing);
     rep.collisionTime += seconds(t0, Clock::now());
   }
   if (rep.status == PreviewStatus::Converged || rep.status == PreviewStatus::MaxIterations) {

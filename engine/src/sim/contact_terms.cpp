@@ -19,6 +19,10 @@ ContactTerms makeContactTerms(const Scene& scene, const Garment& garment,
   setup.avatar = terms.collider;
   setup.avatarContact.stiffness = scene.settings.number("contact.stiffness");
   setup.avatarContact.thickness = terms.thickness;
+  double stretch = std::max(scene.fabric.stretchWarp, scene.fabric.stretchWeft);
+  for (const auto& [panel, fabric] : scene.panelFabrics)
+    stretch = std::max({stretch, fabric.stretchWarp, fabric.stretchWeft});
+  setup.avatarContact.insideStiffnessFactor = newton::insideStiffnessFactorFor(setup.avatarContact, stretch);
   if (setup.avatar && scene.settings.flag("contact.avatar_features") && garment.triangles.rows() > 0) {
     // A triangle deeper behind a feature than half an edge is not one the body poked through.
     const double edge = collision::meanEdgeLength(garment.triangles, garment.positions);

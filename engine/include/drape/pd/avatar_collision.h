@@ -86,6 +86,16 @@ class AvatarContacts {
   // StepPlanes mode, when it is a candidate or moved farther than its bound minus thickness + margin.
   AvatarContactStats addConstraints(const Eigen::MatrixX3d& xFree, ContactAccumulator& acc);
 
+  // End of a step: the fail-safe behind the soft constraints above. A contact constraint is one weighted term of
+  // the L-G compromise, so a much stiffer term (a rigid bending plate, the stiffest fabric on a coarse mesh) or a
+  // step that carries a vertex metres can leave the converged x inside the body. Each free DOF whose end position
+  // x.row(freeVertices[d]) is inside the collider deeper than the thickness (and within thickness + margin of the
+  // surface; deeper ones, as a garment placed through the body, are left to the constraints) is moved to the
+  // closest surface point plus the thickness along the outward normal. DOFs with skip[d] set are left alone. A DOF
+  // is looked at only when it started inside or moved at least its start distance bound plus the thickness.
+  // Parallel; returns the number moved.
+  int resolve(Eigen::MatrixX3d& x, const std::vector<int>& freeVertices, const std::vector<char>* skip = nullptr) const;
+
   const AvatarContactOptions& options() const { return m_options; }
   // From the next step on (the preview switches both once the garment is sewn, preview_settings.h sewnGap; before
   // that it sets holdTargets per step, by the step's length: holdTargetsStep).

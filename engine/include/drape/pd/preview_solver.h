@@ -32,6 +32,7 @@ struct PreviewReport {
   int selfContacts = 0;        // cloth-cloth vertex-triangle constraints of the last iteration (before merging)
   int selfResolved = 0;        // cloth-cloth pairs closer than the thickness (or crossed) projected at step end
   int selfCrossed = 0;         // cloth-cloth pairs still crossed after that projection (0 = none left)
+  int avatarResolved = 0;      // vertices moved out of the avatar at step end (AvatarContacts::resolve)
   int sdIterations = 0;        // summed over the step
   int pcgIterations = 0;       // summed over the step
   double collisionTime = 0.0;  // seconds: contact detection + collision-aware correction

@@ -13,6 +13,12 @@
 
 namespace drape::newton {
 
+double insideStiffnessFactorFor(const ContactParameters& p, double largestStretch) {
+  constexpr double kInsideOverStretch = 5.0;
+  if (!(p.stiffness > 0.0)) return p.insideStiffnessFactor;
+  return std::max(p.insideStiffnessFactor, kInsideOverStretch * largestStretch / p.stiffness);
+}
+
 double AvatarPenalty::energy(double distance) const {
   const double k = stiffness;
   const double t = thickness;

@@ -41,6 +41,12 @@ struct ContactParameters {
   double searchRadius = 0.05;
 };
 
+// The insideStiffnessFactor for a scene whose stiffest fabric stretches with largestStretch N/m: p's own factor,
+// raised so that inside the body the penalty is at least 5 x that stiffness. A fabric that cannot stretch passes
+// the stitches' pull (stitch stiffness x seam gap) on to the body undiminished and otherwise presses itself into
+// it. Every fabric preset (at most 2e4 N/m) keeps the default factor at the default stiffness (1e3 N/m).
+double insideStiffnessFactorFor(const ContactParameters& p, double largestStretch);
+
 // The penalty above as a function of the signed distance d: energy, force dE/dg (g = thickness - d, so the force
 // pushes outwards when positive) and stiffness d2E/dg2. Shared with the avatar's feature contact.
 struct AvatarPenalty {
