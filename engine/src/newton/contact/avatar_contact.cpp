@@ -14,7 +14,7 @@
 namespace drape::newton {
 
 double insideStiffnessFactorFor(const ContactParameters& p, double largestStretch) {
-  constexpr double kInsideOverStretch = 5.0;
+  constexpr double kInsideOverStretch = 2.0;
   if (!(p.stiffness > 0.0)) return p.insideStiffnessFactor;
   return std::max(p.insideStiffnessFactor, kInsideOverStretch * largestStretch / p.stiffness);
 }

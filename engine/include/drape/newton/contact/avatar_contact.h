@@ -42,7 +42,7 @@ struct ContactParameters {
 };
 
 // The insideStiffnessFactor for a scene whose stiffest fabric stretches with largestStretch N/m: p's own factor,
-// raised so that inside the body the penalty is at least 5 x that stiffness. A fabric that cannot stretch passes
+// raised so that inside the body the penalty is at least 2 x that stiffness. A fabric that cannot stretch passes
 // the stitches' pull (stitch stiffness x seam gap) on to the body undiminished and otherwise presses itself into
 // it. Every fabric preset (at most 2e4 N/m) keeps the default factor at the default stiffness (1e3 N/m).
 double insideStiffnessFactorFor(const ContactParameters& p, double largestStretch);
