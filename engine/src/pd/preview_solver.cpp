@@ -127,9 +127,7 @@ struct PreviewSolver::Impl {
   // seamClosing: the free DOFs on a stitch whose sides are still farther apart than kClosingSeamGap contact
   // thicknesses at x. Such a vertex is pulled across the body by its seam, and the step-end fail-safe leaves it to
   // the constraints: putting it back on the surface alone, while its partner is pulled on, stretches the triangles
-  // between them (docs/EXTREMES.md: with every seam vertex included, GarmentCode's shirt hands over a triangle
-  // stretched to 449 % and its preview starts over; with seams counted open from one thickness, a seam vertex of
-  // the shirt in its stiffest bending sinks 40 mm into the shoulder).
+  // between them. The gap is chosen by measurement on GarmentCode's shirt (docs/EXTREMES.md).
   static constexpr double kClosingSeamGap = 4.0;
   void markClosingSeams();
   // Appends the grabbed vertex's constraint (replacing a contact on the same DOF).
