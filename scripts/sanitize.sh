@@ -9,9 +9,7 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 export DRAPE_BUILD_DIR="${DRAPE_BUILD_DIR:-build-sanitize}"
 bash scripts/build.sh -DDRAPE_BUILD_TESTS=ON -DDRAPE_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo
-# fast_unwind_on_malloc=0: Mesa's drivers are built without frame pointers, so the fast unwinder stops at their first
-# frame (an "<unknown module>" once the driver is unloaded) and the suppressions below never see the library.
-export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1:fast_unwind_on_malloc=0"
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:detect_stack_use_after_return=1"
 export LSAN_OPTIONS="suppressions=$PWD/scripts/sanitize.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \

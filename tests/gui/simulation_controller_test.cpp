@@ -223,11 +223,12 @@ void runDefaultScene(const std::map<std::string, std::string>& overrides, size_t
 // were reported, then pauses.
 void runTornDefaultScene(const std::string& stage, size_t reports, qt::SimulationController& controller,
                          Recorder& rec) {
-  runDefaultScene({{"solver.stage", stage},
-                   {"solver.preview.failure_strain", "2"},
-                   {"solver.preview.relaxation_time", "0"},  // the tear check starts after the quasi-static start
-                   {"solver.preview.retry_without_held_targets", "false"}},  // it would tear again
-                  reports, controller, rec);
+  ASSERT_NO_FATAL_FAILURE(runDefaultScene(
+      {{"solver.stage", stage},
+       {"solver.preview.failure_strain", "2"},
+       {"solver.preview.relaxation_time", "0"},  // the tear check starts after the quasi-static start
+       {"solver.preview.retry_without_held_targets", "false"}},  // it would tear again
+      reports, controller, rec));
 }
 
 TEST_F(SimulationControllerTest, PreviewThatStartsOverAndRecoversIsLoggedAsInformation) {
@@ -235,13 +236,13 @@ TEST_F(SimulationControllerTest, PreviewThatStartsOverAndRecoversIsLoggedAsInfor
   // starts over with its contact targets free, and then hands over to the drape. No warning: it recovered.
   qt::SimulationController controller;
   Recorder rec;
-  runDefaultScene({{"solver.stage", "full"},
-                   {"solver.preview.failure_strain", "100"},
-                   {"solver.preview.relaxation_time", "0"},
-                   {"solver.preview.max_halvings", "0"},
-                   {"solver.preview.max_time", "0.001"},
-                   {"solver.preview.handoff_strain", "0.5"}},
-                  3, controller, rec);
+  ASSERT_NO_FATAL_FAILURE(runDefaultScene({{"solver.stage", "full"},
+                                           {"solver.preview.failure_strain", "100"},
+                                           {"solver.preview.relaxation_time", "0"},
+                                           {"solver.preview.max_halvings", "0"},
+                                           {"solver.preview.max_time", "0.001"},
+                                           {"solver.preview.handoff_strain", "0.5"}},
+                                          3, controller, rec));
   ASSERT_EQ(rec.infos.size(), 1u);
   EXPECT_TRUE(rec.infos.front().contains("the preview starts over from the placed garment"))
       << rec.infos.front().toStdString();
@@ -255,7 +256,7 @@ TEST_F(SimulationControllerTest, TornPreviewIsGivenUpWithANotice) {
   // The full pipeline drapes from the placed garment instead, and the user is told.
   qt::SimulationController controller;
   Recorder rec;
-  runTornDefaultScene("full", 2, controller, rec);
+  ASSERT_NO_FATAL_FAILURE(runTornDefaultScene("full", 2, controller, rec));
   ASSERT_EQ(rec.notices.size(), 1u);
   EXPECT_TRUE(rec.infos.empty());  // no restart: jersey is below the softer retry's Courant number
   EXPECT_TRUE(rec.notices.front().contains("the drape starts from the placed garment"))
@@ -269,7 +270,7 @@ TEST_F(SimulationControllerTest, TornPreviewAloneGoesOnWithOneNotice) {
   // A preview run on its own goes on, and the user is told once that its result is wrong.
   qt::SimulationController controller;
   Recorder rec;
-  runTornDefaultScene("preview", 3, controller, rec);
+  ASSERT_NO_FATAL_FAILURE(runTornDefaultScene("preview", 3, controller, rec));
   ASSERT_EQ(rec.notices.size(), 1u);
   EXPECT_TRUE(rec.notices.front().contains("only the drape's can be trusted")) << rec.notices.front().toStdString();
   for (const StepReport& r : rec.reports) EXPECT_EQ(r.stage, Stage::Preview);

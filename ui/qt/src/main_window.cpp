@@ -55,6 +55,12 @@ MainWindow::~MainWindow() {
   // Joins the worker thread (cancelling a step in progress) before the panels it reports to go away.
   delete m_controller;
   m_controller = nullptr;
+  // The document is a child that would go after this destructor, and its undo stack signals while it goes: those
+  // signals must not reach this half-destroyed window.
+  m_document->undoStack()->disconnect(this);
+  m_document->disconnect(this);
+  delete m_document;
+  m_document = nullptr;
 }
 
 void MainWindow::createActions() {

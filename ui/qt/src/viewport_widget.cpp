@@ -25,7 +25,12 @@ ViewportWidget::ViewportWidget(QWidget* parent) : QOpenGLWidget(parent) {
   m_camera = render::presetCamera(render::ViewPreset::ThreeQuarter, m_snapshot.bounds(), 1.0);
 }
 
-ViewportWidget::~ViewportWidget() { releaseGl(); }
+ViewportWidget::~ViewportWidget() {
+  releaseGl();
+  // QOpenGLWidget's destructor destroys the context, whose aboutToBeDestroyed must not reach this half-destroyed
+  // widget.
+  if (QOpenGLContext* ctx = context()) ctx->disconnect(this);
+}
 
 void ViewportWidget::releaseGl() {
   if (!m_renderer) return;
