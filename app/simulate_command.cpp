@@ -144,8 +144,8 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
         break;
       }
       // A progress line every 0.1 s simulated, and at least every 5 s of wall time, so that a slow drape (a stiff
-      // fabric, a fine mesh) is never silent: wall time so far and, from the rate so far, at most how long the rest
-      // of solver.max_sim_time takes (the early stop may come sooner).
+      // fabric, a fine mesh) is never silent: steps and wall time so far and, from the rate so far, at most how long
+      // the rest of solver.max_sim_time takes (the early stop may come sooner).
       const double wall = secondsSince(start);
       if (!torn && (last.time >= nextPrint || wall >= nextWallPrint)) {
         char estimate[64] = "";
@@ -159,9 +159,10 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
         else
           std::snprintf(work, sizeof work, "iterations=%d  cg=%d", last.iterations, last.cgIterations);
         char line[280];
-        std::snprintf(line, sizeof line, "  %s t=%.3f s  h=%.2e  %s  residual=%.2e  KE=%.2e  contacts=%d  wall=%.1f s%s\n",
-                      stageName(last.stage), last.time, last.h, work, last.residual, last.kineticEnergy, last.contacts,
-                      wall, estimate);
+        std::snprintf(line, sizeof line,
+                      "  %s t=%.3f s  step=%d  h=%.2e  %s  residual=%.2e  KE=%.2e  contacts=%d  wall=%.1f s%s\n",
+                      stageName(last.stage), last.time, simulation.steps(), last.h, work, last.residual,
+                      last.kineticEnergy, last.contacts, wall, estimate);
         out << line << std::flush;
         nextPrint = last.time + 0.1;
         nextWallPrint = wall + 5.0;

@@ -101,20 +101,27 @@ TEST(CliSimulate, StepLimitIsReportedAsSuch) {
   EXPECT_LT(j.at("sim_time_s").get<double>(), 0.01);  // far from the scene's time limit
 }
 
-// Progress lines: one every 0.1 s simulated, with the wall time so far, and once 5 % of solver.max_sim_time has
-// passed, at most how long the rest takes at the rate so far.
+// Progress lines: one every 0.1 s simulated, with the steps and the wall time so far, and once 5 % of
+// solver.max_sim_time has passed, at most how long the rest takes at the rate so far.
 TEST(CliSimulate, ProgressLinesSayTheWallTimeAndWhatIsLeft) {
   auto r =
       drape("--simulate " + asset("scenes/hanging_cloth.json") + " --set mesh.target_edge_length=0.1" +
-            " --max-sim-time 0.25 --set quality.require_rest=false -o " + quote((kScratch / "progress.obj").string()));
+            " --max-sim-time 0.25 --set quality.require_rest=false -o " + quote((kScratch / "progress.obj").string()) +
+            " --stats " + quote((kScratch / "progress.json").string()));
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
-  int lines = 0, estimates = 0;
+  const int totalSteps = nlohmann::json::parse(readWhole(kScratch / "progress.json")).at("steps").get<int>();
+  int lines = 0, estimates = 0, lastStep = 0;
   std::istringstream text(r.out);
   for (std::string line; std::getline(text, line);) {
     if (line.rfind("  drape t=", 0) != 0) continue;
     ++lines;
     EXPECT_NE(line.find(" wall="), std::string::npos) << line;
     const double t = std::stod(line.substr(line.find("t=") + 2));
+    ASSERT_NE(line.find(" step="), std::string::npos) << line;
+    const int step = std::stoi(line.substr(line.find(" step=") + 6));
+    EXPECT_GT(step, lastStep) << line;  // steps taken so far, counted from the first
+    EXPECT_LE(step, totalSteps) << line;
+    lastStep = step;
     const bool estimated = line.find("left<=") != std::string::npos;
     EXPECT_EQ(estimated, t >= 0.05 * 0.25) << line;
     estimates += estimated;
