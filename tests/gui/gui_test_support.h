@@ -58,7 +58,6 @@ class RecordingDialogs : public qt::UserDialogs {
   SaveChoice answer = SaveChoice::Cancel;
 };
 
-// Processes events until done() or timeoutMs pass; returns done().
 // A wait's bound only guards against a hang; a sanitized build (-DDRAPE_SANITIZE=ON) runs several times slower.
 #if defined(__SANITIZE_ADDRESS__)
 inline constexpr int kWaitScale = 10;
@@ -66,6 +65,7 @@ inline constexpr int kWaitScale = 10;
 inline constexpr int kWaitScale = 1;
 #endif
 
+// Processes events until done() or timeoutMs (times kWaitScale) pass; returns done().
 inline bool waitUntil(const std::function<bool()>& done, int timeoutMs = 20000) {
   return QTest::qWaitFor(done, timeoutMs * kWaitScale);
 }
