@@ -48,9 +48,8 @@ std::vector<std::pair<std::string, std::vector<std::string>>> defaultSweeps(cons
       {"solver.newton.tolerance", {"1e-4", "1e-2"}},
       {"solver.cg.tolerance", {"1e-3", "1e-1"}}};
   const std::vector<std::pair<std::string, std::vector<std::string>>> preview = {
-      {"solver.preview.time_step", {"0.004166666666666667", "0.008333333333333333"}},
-      {"solver.preview.tolerance", {"1e-4", "1e-2"}},
-      {"solver.preview.local_step", {"jacobi"}},
+      {"solver.preview.time_step", {"0.004166666666666667", "0.016666666666666666"}},
+      {"solver.preview.iterations", {"2", "8"}},
       {"solver.preview.domains", {"1", "4"}}};
   if (stage == "drape") return drape;
   if (stage == "preview") return preview;

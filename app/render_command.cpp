@@ -45,9 +45,6 @@ Snapshot stageSnapshot(Scene scene, const std::string& from, std::ostream& out, 
   }
   out << "render: simulated " << simulation.time() << " s in " << simulation.steps() << " steps ("
       << toString(last.status) << (last.atRest ? ", at rest" : "") << ")\n";
-  // What happened to the preview: each tear that started it over, then why it was given up (or is wrong).
-  for (const std::string& restart : simulation.previewRestartReasons()) out << "render: " << restart << "\n";
-  if (!simulation.previewFailure().empty()) out << "render: " << simulation.previewFailure() << "\n";
   const bool stopped = last.status == StepStatus::Diverged || last.status == StepStatus::Cancelled;
   const std::string status = stopped ? std::string(toString(last.status)) : simulation.endReason();
   const QualityReport quality = checkDrapeQuality(simulation, status);

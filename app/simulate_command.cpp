@@ -35,20 +35,13 @@ nlohmann::json stepRecord(const StepReport& r) {
                       {"max_strain", r.maxStrain},
                       {"max_strain_triangle", r.maxStrainTriangle},
                       {"wall_time_s", r.wallTime}};
-  if (r.quasiNewton) {  // the quasi-Newton preview: iterations are L-BFGS iterations
+  if (r.stage == Stage::Preview) {  // L-BFGS: iterations are its iterations
     j["quasi_newton"] = true;
     j["domains"] = r.domains;
     j["line_search_evaluations"] = r.lineSearchEvaluations;
     j["preconditioner_time_s"] = r.assemblyTime;
     j["gradient_time_s"] = r.gradientTime;
     j["direction_time_s"] = r.linearSolveTime;
-  } else if (r.stage == Stage::Preview) {
-    j["domains"] = r.domains;
-    j["sewn"] = r.sewn;
-    j["assembly"] = r.assembly;
-    j["collision_time_s"] = r.collisionTime;
-    j["local_time_s"] = r.localTime;
-    j["global_time_s"] = r.globalTime;
   } else if (r.stage == Stage::Drape) {
     j["assembly_time_s"] = r.assemblyTime;
     j["gradient_time_s"] = r.gradientTime;
@@ -114,11 +107,9 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
     nlohmann::json perStep = nlohmann::json::array();
     int domains = 0;
     Stage lastStage = simulation.stage();
-    std::string lastFailure;  // simulation.previewFailure() as last printed
-    int restartsSaid = 0;     // simulation.previewRestartReasons() printed
     std::string status;       // Diverged or Cancelled from a step, else why the run finished
     double nextPrint = 0.0, nextWallPrint = 5.0;
-    const double maxSimTime = simulation.scene().settings.number("solver.max_sim_time");
+    const double maxSimTime = simulation.settings().maxSimTime;
     StepReport last;
     while (!simulation.finished()) {
       last = simulation.step();
@@ -128,17 +119,6 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
         out << "  stage " << lastStage << " -> " << simulation.stage() << " at t=" << last.time << " s\n";
         lastStage = simulation.stage();
       }
-      // A torn preview: started over (softer, or with its contact targets free), given up, or (preview alone) going on.
-      const bool restarted = simulation.previewRestarts() > restartsSaid;
-      for (; restartsSaid < simulation.previewRestarts(); ++restartsSaid)
-        out << "  " << simulation.previewRestartReasons()[restartsSaid] << "\n";
-      const bool failed = simulation.previewFailure() != lastFailure;
-      if (failed) {
-        lastFailure = simulation.previewFailure();
-        out << "  " << lastFailure << "\n";
-      }
-      const bool torn = restarted || failed;
-      if (torn && simulation.time() < last.time) nextPrint = 0.0;  // started over, or the drape started, at time 0
       if (last.status == StepStatus::Diverged || last.status == StepStatus::Cancelled) {
         status = toString(last.status);
         break;
@@ -147,12 +127,12 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
       // fabric, a fine mesh) is never silent: steps and wall time so far and, from the rate so far, at most how long
       // the rest of solver.max_sim_time takes (the early stop may come sooner).
       const double wall = secondsSince(start);
-      if (!torn && (last.time >= nextPrint || wall >= nextWallPrint)) {
+      if (last.time >= nextPrint || wall >= nextWallPrint) {
         char estimate[64] = "";
         if (last.time >= 0.05 * maxSimTime)  // the first steps' rate says little about the rest
           std::snprintf(estimate, sizeof estimate, "  left<=%.0f s",
                         wall / last.time * std::max(0.0, maxSimTime - last.time));
-        // The quasi-Newton preview's iterations are L-BFGS iterations; its line searches evaluate the potential.
+        // The preview's iterations are L-BFGS iterations; its line searches evaluate the potential.
         char work[80];
         if (last.quasiNewton)
           std::snprintf(work, sizeof work, "lbfgs=%d  evaluations=%d", last.iterations, last.lineSearchEvaluations);
@@ -182,12 +162,6 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
              {"final", stepRecord(last)},
              {"domains", domains}};
     if (!simulation.divergedReason().empty()) stats["diverged_reason"] = simulation.divergedReason();
-    if (!simulation.previewFailure().empty()) stats["preview_failure"] = simulation.previewFailure();
-    stats["preview_recovered"] = simulation.previewRecoveries();
-    stats["preview_restarts"] = simulation.previewRestarts();
-    stats["preview_courant_number"] = simulation.previewCourantNumber();
-    stats["preview_courant_limit"] = simulation.previewCourantLimit();
-    stats["preview_targets_freed"] = simulation.previewTargetsFreed();
     out << simulation.stage() << ": " << status << " after " << simulation.steps() << " steps, " << simulation.time()
         << " s simulated; wrote " << options.output << "\n";
     if (status == "Diverged")

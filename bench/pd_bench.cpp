@@ -251,7 +251,16 @@ void interactiveTable(const std::string& sceneFile, const std::string& from, int
   const TriangleMesh colliderMesh = mergedColliders(scene);
   std::shared_ptr<const collision::AvatarCollider> collider;
   if (colliderMesh.triangleCount() > 0) collider = std::make_shared<const collision::AvatarCollider>(colliderMesh);
-  const PreviewSettings base = previewSettingsFrom(scene);
+  // pd-dd's projective solver on the scene's garment and body: its own defaults at the step and quasi-static start
+  // it ran garments with, the scene's contact thickness and friction.
+  PreviewSettings base;
+  base.timeStep = 1.0 / 480.0;
+  base.relaxationTime = 0.05;
+  base.contactThickness = contactThickness(scene);
+  if (scene.settings.flag("contact.friction")) {
+    base.friction = scene.fabric.friction;
+    for (const auto& [panel, fabric] : scene.panelFabrics) base.friction = std::max(base.friction, fabric.friction);
+  }
   const int nv = model.numVertices();
 
   std::printf("\n### Interactive preview: %s\n\n", sceneFile.c_str());

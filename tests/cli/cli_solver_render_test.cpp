@@ -3,7 +3,9 @@
 // (tests/slow/cli_bench_extremes_test.cpp, tests/slow/cli_make_avatar_test.cpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -170,6 +172,7 @@ TEST(CliSimulate, FullPipelineRunsThePreviewThenTheDrape) {
       EXPECT_FALSE(sawDrape) << "preview after the drape started";
       sawPreview = true;
       EXPECT_GE(s.at("domains").get<int>(), 1);
+      EXPECT_TRUE(s.at("quasi_newton").get<bool>());  // the drape's model by L-BFGS
     }
     if (stage == "drape") sawDrape = true;
   }
@@ -179,120 +182,21 @@ TEST(CliSimulate, FullPipelineRunsThePreviewThenTheDrape) {
   EXPECT_GE(j.at("domains").get<int>(), 1);
 }
 
-TEST(CliSimulate, TornPreviewIsReportedAndTheDrapeStartsFromThePlacedGarment) {
-  // The default scene's first preview step stretches a seam triangle by ~300 %, past a failure strain of 200 %. The
-  // preview starts over once with its contact targets free (solver.preview.retry_without_held_targets), tears again
-  // in its first step, and is given up.
-  const auto stats = kScratch / "torn.json";
-  auto r = drape("--simulate " + asset("scenes/default.json") + " --solver full --set solver.preview.failure_strain=2" +
-                 " --set solver.preview.relaxation_time=0" + " --max-sim-time 0.002 -o " +
-                 quote((kScratch / "torn.obj").string()) + " --stats " + quote(stats.string()));
-  // 2 ms of a drape from the placed garment: not at rest, and the quality verdict fails (exit 4).
-  ASSERT_EQ(r.exitCode, 4) << r.err << r.out;
-  const size_t freed = r.out.find("contact targets not held before it is sewn");
-  const size_t given = r.out.find("the drape starts from the placed garment");
-  ASSERT_NE(freed, std::string::npos) << r.out;
-  ASSERT_NE(given, std::string::npos) << r.out;
-  EXPECT_LT(freed, given) << r.out;
-  const auto j = nlohmann::json::parse(readWhole(stats));
-  EXPECT_NE(j.at("preview_failure").get<std::string>().find(" of panel "), std::string::npos);
-  const auto& steps = j.at("per_step");
-  ASSERT_GE(steps.size(), 3u);
-  EXPECT_EQ(steps[0].at("stage"), "preview");
-  EXPECT_EQ(steps[1].at("stage"), "preview");
-  EXPECT_EQ(steps[2].at("stage"), "drape");
-  EXPECT_DOUBLE_EQ(steps[1].at("time").get<double>(), steps[1].at("h").get<double>());  // started over at 0
-  // The last torn step's record names the triangle the last message names.
-  EXPECT_GT(steps[1].at("max_strain").get<double>(), 2.0);
-  const std::string torn = "triangle " + std::to_string(steps[1].at("max_strain_triangle").get<int>()) + " of panel ";
-  EXPECT_NE(j.at("preview_failure").get<std::string>().find(torn), std::string::npos) << j.at("preview_failure");
-  EXPECT_LT(steps[2].at("time").get<double>(), 0.001);  // the drape's clock starts again at 0
-  // Jersey is below the full pipeline's Courant limit (solver.preview.pipeline_courant_limit): not softened; the one
-  // restart freed the contact targets.
-  EXPECT_EQ(j.at("preview_restarts").get<int>(), 1);
-  EXPECT_TRUE(j.at("preview_recovered").empty()) << j.at("preview_recovered");  // given up after the restart
-  EXPECT_TRUE(j.at("preview_targets_freed").get<bool>());
-  EXPECT_EQ(j.at("preview_courant_limit").get<double>(), 5.0);
-  EXPECT_LT(j.at("preview_courant_number").get<double>(), 5.0);
-}
-
-TEST(CliSimulate, TornStiffPreviewStartsOverSofterOnceBeforeTheDrape) {
-  // Cotton shirting (Courant number about 26), not softened from the start: the first tear starts the preview over
-  // softer, the second gives up.
-  const auto stats = kScratch / "torn_retry.json";
-  auto r = drape("--simulate " + asset("scenes/default.json") + " --solver full --fabric cotton_shirting" +
-                 " --set solver.preview.pipeline_courant_limit=0" +
-                 " --set solver.preview.failure_strain=2 --set solver.preview.relaxation_time=0" +
-                 " --set solver.preview.retry_without_held_targets=false" + " --max-sim-time 0.002 -o " +
-                 quote((kScratch / "torn_retry.obj").string()) + " --stats " + quote(stats.string()));
-  ASSERT_EQ(r.exitCode, 4) << r.err << r.out;  // 2 ms of a drape from the placed garment: the verdict fails
-  const size_t over = r.out.find("the preview starts over from the placed garment");
-  const size_t given = r.out.find("the drape starts from the placed garment");
-  ASSERT_NE(over, std::string::npos) << r.out;
-  ASSERT_NE(given, std::string::npos) << r.out;
-  EXPECT_LT(over, given) << r.out;
-  const auto j = nlohmann::json::parse(readWhole(stats));
-  EXPECT_EQ(j.at("preview_restarts").get<int>(), 1);
-  EXPECT_NE(j.at("preview_failure").get<std::string>().find("the drape starts from the placed garment"),
-            std::string::npos);
-  EXPECT_TRUE(j.at("preview_recovered").empty()) << j.at("preview_recovered");
-  EXPECT_GT(j.at("preview_courant_number").get<double>(), 5.0);
-  EXPECT_EQ(j.at("preview_courant_limit").get<double>(), 5.0);
-  const auto& steps = j.at("per_step");
-  ASSERT_GE(steps.size(), 3u);
-  EXPECT_EQ(steps[0].at("stage"), "preview");
-  EXPECT_EQ(steps[1].at("stage"), "preview");
-  EXPECT_EQ(steps[2].at("stage"), "drape");
-  // Each start is from the placed garment at time 0: both preview steps end one step after it.
-  EXPECT_DOUBLE_EQ(steps[0].at("time").get<double>(), steps[0].at("h").get<double>());
-  EXPECT_DOUBLE_EQ(steps[1].at("time").get<double>(), steps[1].at("h").get<double>());
-}
-
-TEST(CliSimulate, PreviewThatRecoversAfterStartingOverIsNoFailure) {
-  // The first, unhalved preview step stretches a seam triangle about 300 %, past a hand-over strain of 50 %, as it
-  // hands over (max_time 1 ms): the preview starts over with its contact targets free, and the next hand-over goes
-  // ahead. The run says so as it happens, and the stats carry the restart under preview_recovered, not as a failure.
-  const auto stats = kScratch / "recovered.json";
-  auto r = drape("--simulate " + asset("scenes/default.json") + " --solver full" +
-                 " --set solver.preview.failure_strain=100 --set solver.preview.relaxation_time=0" +
-                 " --set solver.preview.max_halvings=0 --set solver.preview.max_time=0.001" +
-                 " --set solver.preview.handoff_strain=0.5 --max-sim-time 0.003 -o " +
-                 quote((kScratch / "recovered.obj").string()) + " --stats " + quote(stats.string()));
-  // 1 ms into its drape the garment is still stretched and not at rest: the quality verdict fails (exit 4).
-  ASSERT_EQ(r.exitCode, 4) << r.err << r.out;
-  const std::string restart = "the preview starts over from the placed garment with its contact targets not held";
-  EXPECT_NE(r.out.find(restart), std::string::npos) << r.out;
-  const auto j = nlohmann::json::parse(readWhole(stats));
-  EXPECT_FALSE(j.contains("preview_failure")) << j.at("preview_failure");
-  EXPECT_EQ(j.at("preview_restarts").get<int>(), 1);
-  ASSERT_EQ(j.at("preview_recovered").size(), 1u);
-  const std::string recovered = j.at("preview_recovered")[0].get<std::string>();
-  EXPECT_NE(recovered.find("was to hand over a triangle stretched to"), std::string::npos) << recovered;
-  EXPECT_NE(r.out.find(recovered), std::string::npos) << "the printed line is the recovered reason";
-  // Started over at time 0, then the drape from the preview's state.
-  const auto& steps = j.at("per_step");
-  ASSERT_GE(steps.size(), 3u);
-  EXPECT_EQ(steps[1].at("stage"), "preview");
-  EXPECT_DOUBLE_EQ(steps[1].at("time").get<double>(), steps[1].at("h").get<double>());
-  EXPECT_EQ(steps[2].at("stage"), "drape");
-}
-
-TEST(CliSimulate, TornPreviewAloneIsReportedAndGoesOn) {
-  const auto stats = kScratch / "torn_alone.json";
-  auto r =
-      drape("--simulate " + asset("scenes/default.json") + " --solver preview --set solver.preview.failure_strain=2" +
-            " --set solver.preview.relaxation_time=0" + " --max-sim-time 0.004 -o " +
-            quote((kScratch / "torn_alone.obj").string()) + " --stats " + quote(stats.string()));
-  // A torn preview cut short at 4 ms: its quality verdict fails (exit 4).
-  ASSERT_EQ(r.exitCode, 4) << r.err << r.out;
-  EXPECT_FALSE(nlohmann::json::parse(readWhole(stats)).at("quality").at("passed").get<bool>());
-  EXPECT_NE(r.out.find("only the drape's can be trusted"), std::string::npos) << r.out;
-  const auto j = nlohmann::json::parse(readWhole(stats));
-  EXPECT_NE(j.at("preview_failure").get<std::string>().find(" of panel "), std::string::npos);
-  EXPECT_TRUE(j.at("preview_recovered").empty()) << j.at("preview_recovered");
-  const auto& steps = j.at("per_step");
-  ASSERT_GE(steps.size(), 2u);
-  for (const auto& s : steps) EXPECT_EQ(s.at("stage"), "preview");
+// The projective preview's settings went with it: a scene or command line that names one is told, in one line, what
+// the preview is now and which settings it has.
+TEST(CliSimulate, ProjectivePreviewSettingIsRefusedInOneLine) {
+  auto r = drape("--simulate " + asset("scenes/tablecloth.json") + " --solver full" +
+                 " --set solver.preview.courant_limit=5 -o " + quote((kScratch / "refused.obj").string()));
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("solver.preview.courant_limit"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the preview solves the drape's own model"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(kScratch / "refused.obj"));
+  // A renamed one says its new name.
+  r = drape("--simulate " + asset("scenes/tablecloth.json") + " --set solver.preview.qn_iterations=3 -o " +
+            quote((kScratch / "refused.obj").string()));
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("solver.preview.iterations"), std::string::npos) << r.err;
 }
 
 TEST(CliRender, WritesPngOfRequestedSize) {

@@ -40,12 +40,11 @@ class InteractionTest : public ::testing::Test {
   void SetUp() override {
     if (!guiHaveDisplay()) GTEST_SKIP() << "no display: run under xvfb-run -a";
     guiApplication();
-    // The preview falls freely from its first step: the quasi-static start (solver.preview.relaxation_time) moves
-    // the cloth g h^2 per step, too little to see in the few steps these tests take; for the same reason they take
-    // the paper's 1/120 s preview step (12 steps at the default 1/480 s move the cloth 3 mm).
+    // The preview falls freely from its first step: the initial relaxation (solver.newton.relaxation, which the
+    // preview shares with the drape) moves the cloth g h^2 per step, too little to see in the few steps these tests
+    // take.
     auto overrides = unendingDrapeOverrides();
-    overrides.emplace_back("solver.preview.relaxation_time", "0");
-    overrides.emplace_back("solver.preview.time_step", "0.008333333333333333");
+    overrides.emplace_back("solver.newton.relaxation", "false");
     window = openDefaultWindow(&dialogs, overrides);
     ASSERT_NE(window, nullptr) << "the default scene did not open";
     placed = window->currentSnapshot();

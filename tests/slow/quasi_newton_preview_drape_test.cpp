@@ -1,4 +1,4 @@
-// The quasi-Newton preview (solver.preview.method quasi_newton) on the default scene: Newton's rest state is its rest
+// The quasi-Newton preview (the default preview) on the default scene: Newton's rest state is its rest
 // state, and it settles every fabric preset at its long step without tearing or entering the body. Its step and
 // preconditioner are checked in tests/unit/quasi_newton_preview_test.cpp.
 #include <gtest/gtest.h>

@@ -39,9 +39,9 @@ TEST(ExtremesGrid, CellsCoverEveryPhysicsSettingAtBothEndsOfItsRange) {
   EXPECT_TRUE(atMin && atMax);
 }
 
-// The projective preview's cells whose contact constraints lost to a much stiffer term (a rigid bending plate, the
-// stiffest fabric on a 1 m mesh at 0.1 s steps) and left vertices inside the body: the step-end fail-safe
-// (pd::AvatarContacts::resolve) holds them. The default scene for the grid's 0.2 s, where both failed without it.
+// The cells where a much stiffer term (a rigid bending plate, the stiffest fabric on a 1 m mesh at 0.1 s steps) could
+// win over contact and leave vertices inside the body: the preview holds the body there, on the default scene for the
+// grid's 0.2 s.
 TEST(ExtremesGrid, PreviewHoldsTheBodyUnderTheStiffestTerms) {
   SceneRequest base;
   base.input = assetsDir() / "scenes" / "default.json";

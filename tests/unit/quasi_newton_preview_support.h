@@ -1,7 +1,7 @@
 #pragma once
 // What the quasi-Newton preview's tests share (tests/unit/quasi_newton_preview_test.cpp and its drapes of the default
-// scene, tests/slow/quasi_newton_preview_drape_test.cpp): the default scene in a stage, its preview the quasi-Newton
-// one, with further settings overridden.
+// scene, tests/slow/quasi_newton_preview_drape_test.cpp): the default scene in a stage, with further settings
+// overridden.
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,7 +14,7 @@ namespace drape::test {
 inline Scene defaultScene(const char* stage, std::vector<std::pair<std::string, std::string>> extra = {}) {
   SceneRequest request;
   request.input = assetsDir() / "scenes" / "default.json";
-  request.overrides = {{"solver.stage", stage}, {"solver.preview.method", "quasi_newton"}};
+  request.overrides = {{"solver.stage", stage}};
   for (auto& kv : extra) request.overrides.push_back(kv);
   return loadScene(request);
 }

@@ -1,4 +1,4 @@
-// The quasi-Newton preview (solver.preview.method quasi_newton): L-BFGS on the Newton drape's own incremental
+// The quasi-Newton preview (the default preview): L-BFGS on the Newton drape's own incremental
 // potential, its initial Hessian the PD-DD system (pd_preconditioner.h). Its converged step is Newton's step, the
 // PD-DD preconditioner is the assembled system's inverse, it hands over to the drape without a restart and a cloth
 // dropped hard on a sphere does not tunnel. That Newton's rest state is its rest state and that it settles every
@@ -137,7 +137,6 @@ TEST(QuasiNewtonPreview, ClothDroppedHardOnASphereDoesNotTunnel) {
   SceneRequest request;
   request.input = assetsDir() / "scenes" / "tablecloth.json";
   request.overrides = {{"solver.stage", "preview"},
-                       {"solver.preview.method", "quasi_newton"},
                        {"sim.gravity", "-1000"},
                        {"solver.max_sim_time", "0.25"}};
   Simulation sim(loadScene(request));

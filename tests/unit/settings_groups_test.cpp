@@ -9,8 +9,8 @@
 
 #include "drape/core/input_error.h"
 #include "drape/newton/linear_solve.h"
-#include "drape/pd/preview_settings.h"
 #include "drape/scene/settings.h"
+#include "drape/scene/stage_settings.h"
 #include "drape/sim/stage.h"
 
 namespace drape {
@@ -72,23 +72,6 @@ void expectChoices(const std::string& key, const std::vector<std::pair<std::stri
 }
 
 TEST(SettingsChoices, MapToTheSolversEnumsByName) {
-  expectChoices<pd::LocalStepKind>("solver.preview.local_step", {{"gauss_seidel", pd::LocalStepKind::GaussSeidel},
-                                                                 {"jacobi", pd::LocalStepKind::Jacobi}});
-  expectChoices<pd::LocalStepKind>("solver.preview.sewn_local_step", {{"gauss_seidel", pd::LocalStepKind::GaussSeidel},
-                                                                      {"jacobi", pd::LocalStepKind::Jacobi}});
-  expectChoices<pd::ContactSolveKind>("solver.preview.contact_solve",
-                                      {{"dual_then_pcg", pd::ContactSolveKind::DualThenPcg},
-                                       {"pcg", pd::ContactSolveKind::Pcg},
-                                       {"dual_cg_then_pcg", pd::ContactSolveKind::DualCgThenPcg},
-                                       {"factor", pd::ContactSolveKind::Factor}});
-  expectChoices<pd::ContactTargetKind>(
-      "solver.preview.contact_targets",
-      {{"step_planes", pd::ContactTargetKind::StepPlanes}, {"reproject", pd::ContactTargetKind::Reproject}});
-  expectChoices<pd::FrictionLoadKind>(
-      "solver.preview.friction_load",
-      {{"inertial", pd::FrictionLoadKind::Inertial}, {"collision_free", pd::FrictionLoadKind::CollisionFree}});
-  expectChoices<pd::ShearModelKind>("solver.preview.shear_model",
-                                    {{"fabric", pd::ShearModelKind::Fabric}, {"stretch", pd::ShearModelKind::Stretch}});
   expectChoices<newton::Preconditioner>("solver.cg.preconditioner",
                                         {{"none", newton::Preconditioner::None},
                                          {"diagonal", newton::Preconditioner::Diagonal},
@@ -128,6 +111,46 @@ TEST(SettingsImplementationSwitches, AreRefusedWithALineNamingTheBenchmark) {
       EXPECT_EQ(m.find('\n'), std::string::npos) << "one line: " << m;
     }
   }
+}
+
+// The projective preview's settings went with it from the simulation (DESIGN.md 5a): a scene naming one is told in one
+// line that the preview solves the drape's own model, and which settings it has; the two renamed ones their names.
+TEST(SettingsProjectivePreview, AreRefusedWithWhatThePreviewIsNow) {
+  for (const std::string key : {"solver.preview.courant_limit", "solver.preview.sewn_gap", "solver.preview.method",
+                                "solver.preview.failure_strain", "solver.preview.local_step"}) {
+    EXPECT_FALSE(Settings::find(key)) << key;
+    Settings s;
+    try {
+      s.set(key, "1", "scene.json");
+      ADD_FAILURE() << key << " was accepted";
+    } catch (const InputError& e) {
+      const std::string m = e.what();
+      EXPECT_EQ(m.rfind("scene.json: '" + key + "' was a setting of the projective preview", 0), 0u) << m;
+      EXPECT_NE(m.find("solver.preview.time_step"), std::string::npos) << m;
+      EXPECT_EQ(m.find('\n'), std::string::npos) << "one line: " << m;
+    }
+  }
+  Settings s;
+  try {
+    s.set("solver.preview.qn_time_step", "0.01", "scene.json");
+    ADD_FAILURE() << "qn_time_step was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("replaced by solver.preview.time_step"), std::string::npos) << e.what();
+  }
+}
+
+// Each preview default has one source, the stage's settings struct, and the table shows it.
+TEST(SettingsProjectivePreview, PreviewDefaultsAreTheStagesStruct) {
+  const Settings s;
+  const PreviewStageSettings defaults;
+  EXPECT_DOUBLE_EQ(s.number("solver.preview.time_step"), defaults.timeStep);
+  EXPECT_EQ(s.integer("solver.preview.iterations"), defaults.iterations);
+  EXPECT_EQ(s.integer("solver.preview.domains"), defaults.domains);
+  EXPECT_DOUBLE_EQ(s.number("solver.preview.max_time"), defaults.maxTime);
+  EXPECT_DOUBLE_EQ(s.number("solver.preview.handoff_speed"), defaults.handoffSpeed);
+  int previewSettings = 0;
+  for (const SettingSpec& spec : Settings::specs()) previewSettings += spec.key.rfind("solver.preview.", 0) == 0;
+  EXPECT_LE(previewSettings, 18);  // at most half of the projective preview's 36
 }
 
 TEST(Stage, NamesAreThoseOfTheStatistics) {

@@ -19,7 +19,6 @@
 #include "drape/pd/domain_partition.h"
 #include "drape/pd/local_step.h"
 #include "drape/pd/pd_system.h"
-#include "drape/pd/preview_fabric.h"
 
 namespace drape::pd {
 namespace {
@@ -149,7 +148,7 @@ PreviewSolver::PreviewSolver(const model::ClothModel& model, const PreviewSettin
   im.collider = std::move(collider);
   const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
   im.arena = std::make_unique<tbb::task_arena>(threads);
-  im.model = previewFabricModel(model, settings.timeStep, settings.courantLimit);
+  im.model = model;
   im.levels.resize(static_cast<size_t>(std::max(settings.maxHalvings, 0)) + 1);
   im.levels[0].system = std::make_unique<PdSystem>(im.model, settings);
   im.system = im.levels[0].system.get();

@@ -1,8 +1,9 @@
 #include "drape/scene/settings.h"
 
-#include <map>
 #include <charconv>
 #include <cmath>
+#include <map>
+#include <set>
 #include <sstream>
 
 #include "drape/core/input_error.h"
@@ -114,7 +115,7 @@ const char* settingGroupTitle(SettingGroup group) {
     case SettingGroup::Fabric: return "the fabric preset and overrides of its properties";
     case SettingGroup::Contact: return "contact with the body and the cloth itself, friction";
     case SettingGroup::Run: return "what a run simulates and for how long";
-    case SettingGroup::Preview: return "the fast preview (PD-DD, or the quasi-Newton preview)";
+    case SettingGroup::Preview: return "the fast preview (the drape's model by L-BFGS, pd-dd's system as its initial Hessian)";
     case SettingGroup::Drape: return "the accurate drape (Backward-Euler Newton, its PCG, damping, stitches, pins)";
     case SettingGroup::Quality: return "the verdict on every simulated result";
     case SettingGroup::Output: return "renders: the camera";
@@ -145,7 +146,9 @@ const std::map<std::string, std::string>& retiredSettings() {
       {"solver.newton.early_stop_threshold",
        "solver.newton.rest_speed (m/s, the 99th percentile of vertex speeds; a kinetic energy in J stopped a light or "
        "finely meshed garment while it still moved)"},
-      {"solver.damping.stretch", "fabric.damping (the fabric's own stretch dissipation)"}};
+      {"solver.damping.stretch", "fabric.damping (the fabric's own stretch dissipation)"},
+      {"solver.preview.qn_time_step", "solver.preview.time_step"},
+      {"solver.preview.qn_iterations", "solver.preview.iterations"}};
   return retired;
 }
 
@@ -160,8 +163,29 @@ const std::map<std::string, std::string>& implementationSwitches() {
   return switches;
 }
 
+// Settings of the projective preview, which is no longer a stage of the simulation: the preview solves the drape's
+// own model (DESIGN.md 5a), and pd-dd's projective solver is a library component measured by its benchmark.
+bool projectivePreviewSetting(const std::string& key) {
+  static const std::set<std::string> removed = {
+      "solver.preview.method", "solver.preview.tolerance", "solver.preview.max_iterations",
+      "solver.preview.anderson_window", "solver.preview.max_halvings", "solver.preview.grow_after_steps",
+      "solver.preview.local_step", "solver.preview.contact_solve", "solver.preview.pcg_tolerance",
+      "solver.preview.hold_contact_targets", "solver.preview.hold_targets_step", "solver.preview.sewn_gap",
+      "solver.preview.sewn_time", "solver.preview.sewn_local_step", "solver.preview.assembly_edge_length",
+      "solver.preview.contact_targets", "solver.preview.friction_load", "solver.preview.shear_model",
+      "solver.preview.failure_strain", "solver.preview.relaxation_time", "solver.preview.courant_limit",
+      "solver.preview.pipeline_courant_limit", "solver.preview.softened_max_time", "solver.preview.retry_courant_limit",
+      "solver.preview.retry_without_held_targets", "solver.preview.handoff_strain", "solver.preview.sd_iterations",
+      "solver.preview.ccd", "solver.preview.rest_speed"};
+  return removed.count(key) > 0;
+}
+
 void Settings::set(const std::string& key, const std::string& value, const std::string& context) {
   const SettingSpec* spec = find(key);
+  if (!spec && projectivePreviewSetting(key))
+    throw InputError(context + ": '" + key + "' was a setting of the projective preview, which is gone: the preview " +
+                     "solves the drape's own model (solver.preview.time_step, iterations, domains, max_time, " +
+                     "handoff_speed; docs/ENGINE.md)");
   if (!spec && retiredSettings().count(key))
     throw InputError(context + ": the setting '" + key + "' is replaced by " + retiredSettings().at(key));
   if (!spec && implementationSwitches().count(key)) {

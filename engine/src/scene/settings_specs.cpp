@@ -1,9 +1,23 @@
 // The table of every setting, in groups (SettingGroup): the scene, its mesh and fabric, contact, the run, the
 // preview, the drape, the quality verdict and the output.
+#include <cstdio>
+
 #include "drape/scene/settings.h"
+#include "drape/scene/stage_settings.h"
 
 namespace drape {
 namespace {
+
+// The preview's defaults: its settings struct's (one source for each).
+const PreviewStageSettings kPreview{};
+
+std::string defaultOf(double value) {
+  char out[32];
+  std::snprintf(out, sizeof out, "%.17g", value);
+  return out;
+}
+
+std::string defaultOf(int value) { return std::to_string(value); }
 
 // The rows of one group, each marked with it.
 std::vector<SettingSpec> section(SettingGroup group, std::vector<SettingSpec> rows) {
@@ -73,7 +87,7 @@ const std::vector<SettingSpec>& Settings::specs() {
           {"contact.self_collision", T::Boolean, "false", "", "cloth-cloth contact (builds the self-collision BVH)"},
       }),
       section(G::Run, {
-          {"solver.stage", T::Choice, "drape", "", "what --simulate runs: none (placed garment), preview (PD-DD), drape "
+          {"solver.stage", T::Choice, "drape", "", "what --simulate runs: none (placed garment), preview (the drape's model by L-BFGS), drape "
                "(Newton from the placed garment) or full (preview, then the drape from the preview state)", -1e300, 1e300,
                {"none", "preview", "drape", "full"}},
           {"solver.max_sim_time", T::Number, "3", "s", "simulated time limit when the garment does not come to rest", 1e-4,
@@ -81,101 +95,15 @@ const std::vector<SettingSpec>& Settings::specs() {
           {"solver.max_steps", T::Integer, "100000", "", "step limit", 1, 1e9},
       }),
       section(G::Preview, {
-          {"solver.preview.method", T::Choice, "projective", "", "what the preview solves: projective (pd-dd's constraint "
-               "model; the other solver.preview settings) or quasi_newton (the drape's own model and rest states, by L-BFGS "
-               "whose initial Hessian is the PD-DD system; qn_* settings; docs/BENCHMARKS.md, \"A preview on the drape's "
-               "model\")", -1e300, 1e300, {"projective", "quasi_newton"}},
-          {"solver.preview.qn_time_step", T::Number, "0.008333333333333333", "s", "quasi-Newton preview: time step", 1e-5,
-               0.1},
-          {"solver.preview.qn_iterations", T::Integer, "4", "", "quasi-Newton preview: L-BFGS iterations per step", 1,
-               1000},
-          {"solver.preview.time_step", T::Number, "0.0020833333333333333", "s",
-               "preview time step h (the paper: 1/120 s; 1/480 s keeps stiff, light garments on the body, docs/ENGINE.md)", 1e-5,
-               0.1},
-          {"solver.preview.tolerance", T::Number, "1e-3", "", "L-G convergence: max move / scene size", 1e-9, 1},
-          {"solver.preview.max_iterations", T::Integer, "30", "", "cap on L-G iterations per step", 1, 10000},
-          {"solver.preview.anderson_window", T::Integer, "0", "",
-               "Anderson acceleration of the L-G iterations over this many past iterates (0: off, the paper's plain loop)", 0,
-               50},
-          {"solver.preview.max_halvings", T::Integer, "2", "",
-               "a step whose L-G loop hits the cap is redone at h/2, at most this many halvings below time_step (0: never)", 0,
-               20},
-          {"solver.preview.grow_after_steps", T::Integer, "10", "", "converged steps before a halved time step doubles back",
-               1, 100000},
-          {"solver.preview.domains", T::Integer, "0", "", "METIS domains D (0: the thread count)", 0, 4096},
-          {"solver.preview.local_step", T::Choice, "gauss_seidel", "", "local step", -1e300, 1e300,
-               {"gauss_seidel", "jacobi"}},
-          {"solver.preview.contact_solve", T::Choice, "factor", "", "collision-aware global solve", -1e300,
-               1e300, {"dual_then_pcg", "pcg", "dual_cg_then_pcg", "factor"}},
-          {"solver.preview.pcg_tolerance", T::Number, "1e-6", "", "relative residual of the collision-aware solve (eq. 14)",
-               1e-12, 1},
-          {"solver.preview.hold_contact_targets", T::Boolean, "false", "",
-               "avatar contact targets fixed within a step once found"},
-          {"solver.preview.hold_targets_step", T::Number, "0.0020833333333333333", "s",
-               "before the garment is sewn, avatar contact targets are held within steps no longer than this (0: only once "
-               "sewn)", 0, 1},
-          {"solver.preview.sewn_gap", T::Number, "0.0005", "m",
-               "once every stitch gap is below this, contact targets are held within a step and friction takes the cloth's "
-               "tension as load, once they have stayed so for sewn_time (0: never)", 0, 1},
-          {"solver.preview.sewn_time", T::Number, "0.1", "s",
-               "how long every stitch gap must stay below sewn_gap before the garment counts as sewn", 0, 1e4},
-          {"solver.preview.sewn_local_step", T::Choice, "jacobi", "", "local step once the garment is sewn", -1e300,
-               1e300, {"gauss_seidel", "jacobi"}},
-          {"solver.preview.assembly_edge_length", T::Number, "0.02", "m",
-               "a garment meshed at least 1.5x finer is first sewn by the preview on a mesh of this edge length, then carried "
-               "over to its own mesh (0: never)", 0, 1},
-          {"solver.preview.contact_targets", T::Choice, "reproject", "",
-               "avatar contact targets: half-spaces fixed per step, or re-projected every L-G iteration", -1e300, 1e300,
-               {"step_planes", "reproject"}},
-          {"solver.preview.friction_load", T::Choice, "inertial", "",
-               "normal load bounding friction: inertial prediction, or collision-free solve (incl. cloth tension)", -1e300,
-               1e300, {"inertial", "collision_free"}},
-          {"solver.preview.shear_model", T::Choice, "stretch", "",
-               "what resists shear in the strain constraints: the stretch weights (pd-dd; too stiff in shear, converges) or "
-               "the fabric's shear stiffness (accurate when converged; under-converged it over-shears)", -1e300, 1e300, {"fabric", "stretch"}},
-          {"solver.preview.failure_strain", T::Number, "5", "",
-               "a preview triangle stretched past this strain (5 = 6x its rest length) after the quasi-static start (during "
-               "it: past 4x this for 3 ms) is a tear (mostly the body through the cloth): the preview starts over softer "
-               "when retry_courant_limit says so, else the full pipeline, or a drape asked to start from that preview state, "
-               "starts the drape from the placed garment instead, and a preview run alone goes on and says its result is wrong "
-               "(0: never)", 0, 1e6},
-          {"solver.preview.relaxation_time", T::Number, "0.05", "s",
-               "velocities zeroed after every step until this scene time (quasi-static assembly)", 0, 1e4},
-          {"solver.preview.courant_limit", T::Number, "0", "",
-               "the preview softens a fabric in stretch and shear until an elastic wave crosses at most this many mean edge "
-               "lengths per step (sqrt(stretch / density) time_step / edge; the default t-shirt in jersey: 4.7, in the "
-               "other presets 18-26, whose previews tear at their own stiffness); the drape keeps the fabric's own "
-               "stiffness (0: the preview too; see pipeline_courant_limit)", 0, 1e6},
-          {"solver.preview.pipeline_courant_limit", T::Number, "5", "",
-               "courant_limit for the full pipeline's preview (the softer of the two when both are set): the drape that "
-               "follows it restores the fabric's stiffness; such a softened preview hands over after softened_max_time "
-               "(0: courant_limit alone)", 0, 1e6},
-          {"solver.preview.softened_max_time", T::Number, "0.075", "s",
-               "longest preview stage of the full pipeline when its fabric is softened (courant_limit, "
-               "pipeline_courant_limit), if shorter than max_time: a softened preview sags and slides more than the fabric "
-               "would (the A-line skirt 4 cm down the hips by 0.5 s)",
-               1e-3, 1e4},
-          {"solver.preview.retry_courant_limit", T::Number, "5", "",
-               "a preview that tears (solver.preview.failure_strain) with a fabric whose Courant number is above this (see "
-               "courant_limit, which must be 0 or above this) starts over once from the placed garment with courant_limit at "
-               "this, before a tear gives it up (0: never)", 0, 1e6},
-          {"solver.preview.retry_without_held_targets", T::Boolean, "true", "",
-               "a preview that tears when no softer retry applies (retry_courant_limit) starts over once from the placed "
-               "garment with its avatar contact targets never held before the garment is sewn (hold_targets_step 0): held "
-               "targets can lock a seam pulled across the body"},
-          {"solver.preview.handoff_strain", T::Number, "2", "",
-               "a full pipeline's preview about to hand over a triangle stretched past this (2 = 3x its rest length) starts "
-               "over as after a tear when retry_without_held_targets still applies; else it hands over (0: never)", 0, 1e3},
-          {"solver.preview.sd_iterations", T::Integer, "1", "", "dual steepest-descent updates before PCG (eq. 24)", 1,
-               1000},
-          {"solver.preview.ccd", T::Boolean, "true", "", "CCD of the vertex paths against the avatar"},
-          {"solver.preview.max_time", T::Number, "0.5", "s",
-               "longest preview stage (full pipeline), counted again when the garment's own mesh takes over from the coarse "
-               "assembly; a later hand-over leaves the drape more to undo (docs/BENCHMARKS.md)",
-               1e-3, 1e4},
-          {"solver.preview.rest_speed", T::Number, "0.01", "m/s",
-               "the preview is settled when the 99th percentile of vertex speeds falls below this", 0, 100},
-          {"solver.preview.handoff_speed", T::Number, "0.1", "m/s",
+          {"solver.preview.time_step", T::Number, defaultOf(kPreview.timeStep), "s",
+               "preview time step (the drape's model solved by L-BFGS at a longer step than the drape's)", 1e-5, 0.1},
+          {"solver.preview.iterations", T::Integer, defaultOf(kPreview.iterations), "",
+               "L-BFGS iterations per preview step (its initial Hessian: pd-dd's domain-decomposed system)", 1, 1000},
+          {"solver.preview.domains", T::Integer, defaultOf(kPreview.domains), "", "METIS domains D (0: the thread count)", 0,
+               4096},
+          {"solver.preview.max_time", T::Number, defaultOf(kPreview.maxTime), "s",
+               "longest preview of the full pipeline before the drape takes over (docs/BENCHMARKS.md)", 1e-3, 1e4},
+          {"solver.preview.handoff_speed", T::Number, defaultOf(kPreview.handoffSpeed), "m/s",
                "full pipeline: the drape takes over once the 99th percentile of vertex speeds stays below this for 0.1 s",
                0, 100},
       }),

@@ -33,8 +33,7 @@ ExtremeCell atEnd(const std::string& name, const std::vector<std::string>& keys,
 
 const std::vector<std::string> kStretch = {"fabric.stretch_warp", "fabric.stretch_weft"};
 const std::vector<std::string> kBending = {"fabric.bend_warp", "fabric.bend_weft"};
-const std::vector<std::string> kTimeStep = {"solver.newton.h_max", "solver.preview.time_step",
-                                            "solver.preview.qn_time_step"};
+const std::vector<std::string> kTimeStep = {"solver.newton.h_max", "solver.preview.time_step"};
 // The finest mesh the grid runs: the range's own minimum (0.1 mm) is refused for a garment (its triangle limit).
 constexpr double kFinestEdge = 0.005;
 

@@ -98,7 +98,8 @@ void MainWindow::createActions() {
   m_sim.preview = new QAction(s->standardIcon(QStyle::SP_MediaSeekForward), tr("Pre&view"), this);
   m_sim.preview->setShortcut(QKeySequence(Qt::SHIFT | Qt::Key_F5));
   m_sim.preview->setToolTip(
-      tr("Run the fast preview (domain-decomposed Projective Dynamics) from the placed garment; drag vertices "
+      tr("Run the fast preview (the drape's own model by L-BFGS on pd-dd's domain-decomposed system) from the placed "
+         "garment; drag vertices "
          "with the mouse and Ctrl+click to pin while it runs (Shift+F5)"));
   m_sim.preview->setStatusTip(m_sim.preview->toolTip());
   connect(m_sim.preview, &QAction::triggered, m_controller, &SimulationController::preview);
@@ -262,7 +263,6 @@ void MainWindow::connectDocument() {
                         .arg(simulation->garment().triangleCount())
                         .arg(simulation->pinned().size())
                         .arg(terms.join(", ")));
-    if (!simulation->previewFailure().empty()) log(tr("warning"), QString::fromStdString(simulation->previewFailure()));
     if (simulation->resumed()) {
       // An edit of the running scene (fabric, pin, setting): continue from the current state.
       log(tr("info"), tr("The %1 continues from %2 (t = %3 s)")
@@ -314,8 +314,6 @@ void MainWindow::connectDocument() {
   });
   connect(m_controller, &SimulationController::errorOccurred, this,
           [this](const QString& message) { showError(tr("Simulation"), message); });
-  connect(m_controller, &SimulationController::noticeOccurred, this,
-          [this](const QString& message) { log(tr("warning"), message); });
   connect(m_controller, &SimulationController::infoOccurred, this,
           [this](const QString& message) { log(tr("info"), message); });
   connect(m_controller, &SimulationController::qualityReported, this, [this](const QualityReport& report) {

@@ -37,8 +37,6 @@ SimulationController::SimulationController(QObject* parent) : QObject(parent) {
       },
       Qt::QueuedConnection);
   connect(m_worker, &SimulationWorker::errorOccurred, this, &SimulationController::errorOccurred, Qt::QueuedConnection);
-  connect(m_worker, &SimulationWorker::noticeOccurred, this, &SimulationController::noticeOccurred,
-          Qt::QueuedConnection);
   connect(m_worker, &SimulationWorker::infoOccurred, this, &SimulationController::infoOccurred, Qt::QueuedConnection);
   connect(m_worker, &SimulationWorker::qualityReported, this, &SimulationController::qualityReported,
           Qt::QueuedConnection);

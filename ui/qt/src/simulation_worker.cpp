@@ -138,7 +138,6 @@ bool SimulationWorker::rebuild(const std::string& stage, const ResumeState* from
     scene.settings.set("solver.stage", stage, "simulation");
     auto fresh = from ? std::make_shared<Simulation>(std::move(scene), *from)
                       : std::make_shared<Simulation>(std::move(scene));
-    if (!fresh->previewFailure().empty()) emit noticeOccurred(QString::fromStdString(fresh->previewFailure()));
     replace(std::move(fresh));
     sendSnapshot();
     return true;
@@ -240,16 +239,17 @@ void SimulationWorker::stepOnce() {
   if (!m_running.load()) return;  // paused or cancelled between two steps (finishCancel shows a cancel)
   auto simulation = current();
   if (!simulation) return;
-  const std::string failure = simulation->previewFailure();
-  const int restarts = simulation->previewRestarts();
+  const Stage before = simulation->stage();
   const StepReport report = simulation->step();
   emit stepReported(report);
-  // A torn preview: started over (information: it may yet recover), given up for the drape, or (preview alone)
-  // going on with a wrong result.
-  for (int i = restarts; i < simulation->previewRestarts(); ++i)
-    emit infoOccurred(QString::fromStdString(simulation->previewRestartReasons()[i]));
-  if (simulation->previewFailure() != failure)
-    emit noticeOccurred(QString::fromStdString(simulation->previewFailure()));
+  // A stage that settles says so: the preview at rest is the drape's model at rest; the hand-over says when.
+  if (report.atRest)
+    emit infoOccurred(QStringLiteral("The %1 is at rest at t = %2 s (step %3)")
+                          .arg(stageName(report.stage))
+                          .arg(report.time, 0, 'g', 4)
+                          .arg(simulation->steps()));
+  else if (simulation->stage() != before)
+    emit infoOccurred(QStringLiteral("The drape takes over from the preview at t = %1 s").arg(simulation->time(), 0, 'g', 4));
   updateStage();
   if (report.status != StepStatus::Cancelled) publishResumeState();
   if (report.status == StepStatus::Cancelled) {

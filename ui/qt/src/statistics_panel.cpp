@@ -226,13 +226,10 @@ void StatisticsPanel::flush() {
   setFigure(tr("time"), tr("%1 s (step %2)").arg(report.time, 0, 'f', 4).arg(m_steps));
   setFigure(tr("step time"),
             tr("%1 ms (h = %2 ms)").arg(report.wallTime * 1e3, 0, 'f', 1).arg(report.h * 1e3, 0, 'g', 3));
-  // What the stage's solver iterates: the drape Newton and CG, the projective preview local-global iterations and
-  // the collision-aware solve's CG, the quasi-Newton preview L-BFGS iterations and its line searches' evaluations.
+  // What the stage's solver iterates: the drape Newton and CG, the preview L-BFGS and its line searches' evaluations.
   if (report.quasiNewton)
     setFigure(tr("iterations"),
               tr("%1 L-BFGS, %2 evaluations").arg(report.iterations).arg(report.lineSearchEvaluations));
-  else if (report.stage == Stage::Preview)
-    setFigure(tr("iterations"), tr("%1 local-global, %2 CG").arg(report.iterations).arg(report.cgIterations));
   else
     setFigure(tr("iterations"), tr("%1 Newton, %2 CG").arg(report.iterations).arg(report.cgIterations));
   setFigure(tr("residual"), QString::number(report.residual, 'e', 2));

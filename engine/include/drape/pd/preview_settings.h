@@ -69,12 +69,6 @@ struct PreviewSettings {
   // panels at metres per second through each other and the body), as the drape's initial relaxation. Scenes default
   // to 0.05 s (solver.preview.relaxation_time); 0 here, so a solver built directly starts in free fall.
   double relaxationTime = 0.0;
-  // > 0: each fabric's stretch and shear stiffness is capped so that an in-plane elastic wave crosses at most this
-  // many mean edge lengths in one step of timeStep (preview_fabric.h): 5 keeps the default t-shirt's preview whole
-  // in every fabric preset (docs/BENCHMARKS.md, "Findings worth keeping"). 0: the fabric's own stiffness, as a
-  // scene's preview run alone by default (solver.preview.courant_limit); the full pipeline's preview uses 5
-  // (solver.preview.pipeline_courant_limit, Simulation).
-  double courantLimit = 0.0;
 
   // Contact (pd-dd sections 6, 7.3). Avatar terms only with an avatar collider, cloth terms only with selfCollision.
   double contactThickness = 0.004;  // metres kept between cloth and avatar surface

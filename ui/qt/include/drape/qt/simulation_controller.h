@@ -47,7 +47,6 @@ class SimulationController : public QObject {
   void runStateChanged(drape::qt::RunState state);
   void stageChanged(drape::Stage stage);
   void errorOccurred(QString message);
-  void noticeOccurred(QString message);
   void infoOccurred(QString message);
   void qualityReported(drape::QualityReport report);
 

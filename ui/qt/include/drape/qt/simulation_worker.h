@@ -87,11 +87,7 @@ class SimulationWorker : public QObject {
   void stageChanged(drape::Stage stage);
   // A diverged step or a failed rebuild: shown to the user; the last good state is kept.
   void errorOccurred(QString message);
-  // Something the user should know that needs no answer: a torn preview, given up for a drape from the placed
-  // garment, or (a preview run alone) going on with a result that is wrong (Simulation::previewFailure()).
-  void noticeOccurred(QString message);
-  // Something that happened and is no failure: a tear after which the preview started over
-  // (Simulation::previewRestartReasons()).
+  // Something that happened and needs no answer: a stage at rest, the drape taking over from the preview.
   void infoOccurred(QString message);
   // The quality verdict (sim/drape_quality.h) of a stage that finished (at rest or at the scene's time or step
   // limit), computed on the worker thread before the Finished state is announced.
