@@ -35,14 +35,14 @@ nlohmann::json stepRecord(const StepReport& r) {
                       {"max_strain", r.maxStrain},
                       {"max_strain_triangle", r.maxStrainTriangle},
                       {"wall_time_s", r.wallTime}};
-  if (r.stage == Stage::Preview) {  // L-BFGS: iterations are its iterations
+  if (r.quasiNewton) {  // the preview's L-BFGS steps: iterations are its iterations
     j["quasi_newton"] = true;
     j["domains"] = r.domains;
     j["line_search_evaluations"] = r.lineSearchEvaluations;
     j["preconditioner_time_s"] = r.assemblyTime;
     j["gradient_time_s"] = r.gradientTime;
     j["direction_time_s"] = r.linearSolveTime;
-  } else if (r.stage == Stage::Drape) {
+  } else {
     j["assembly_time_s"] = r.assemblyTime;
     j["gradient_time_s"] = r.gradientTime;
     j["linear_solve_time_s"] = r.linearSolveTime;

@@ -49,7 +49,7 @@ TEST(CliFrom, StageNoneWritesTheGivenStateAndAPreviewStartsThere) {
   // The previews are cut short, not at rest: the test is about the states they leave, not their quality verdict.
   const std::string tablecloth =
       scene("tablecloth.json") + " --set mesh.target_edge_length=0.08 --set quality.require_rest=false";
-  ASSERT_EQ(drape("--simulate " + tablecloth + " --solver preview --max-sim-time 0.1 -o " + path("state.obj")).exitCode,
+  ASSERT_EQ(drape("--simulate " + tablecloth + " --solver preview --max-sim-time 0.2 -o " + path("state.obj")).exitCode,
             0);
   ASSERT_EQ(drape("--simulate " + tablecloth + " --solver none -o " + path("placed.obj")).exitCode, 0);
   const auto r = drape("--simulate " + tablecloth + " --solver none --from " + path("state.obj") + " -o " +

@@ -117,7 +117,7 @@ TEST(Cli, SimulateAndRenderPrintTheScenesWarnings) {
   const auto stats = kScratch / "warned_stats.json";
   // A preview cut short (not at rest): the test is about the warnings, not the quality verdict.
   auto sim = drape("--simulate " + pattern + " --solver preview --max-sim-time 0.01" +
-                   " --set mesh.target_edge_length=0.05 --set quality.require_rest=false -o " +
+                   " --set mesh.target_edge_length=0.05 --set quality.require_rest=false --set quality.max_strain=100 -o " +
                    quote((kScratch / "warned.obj").string()) + " --stats " + quote(stats.string()));
   ASSERT_EQ(sim.exitCode, 0) << sim.err;
   const std::string expected = "stitch 0: panel 'short' edge 0 (length 20) and panel 'long' edge 1 (length 30) differ";

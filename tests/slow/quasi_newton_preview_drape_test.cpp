@@ -38,7 +38,7 @@ TEST(QuasiNewtonPreview, EveryFabricPresetSettlesAtTheLongStep) {
     while (!sim.finished()) {
       const StepReport r = sim.step();
       ASSERT_NE(r.status, StepStatus::Diverged) << fabric;
-      if (r.time > 0.2) {  // grown to the long step after the relaxation
+      if (r.time > 0.2 && r.quasiNewton) {  // L-BFGS grown to the long step after the relaxation
         EXPECT_NEAR(r.h, 1.0 / 120.0, 1e-12) << fabric;
       }
       largestStrain = std::max(largestStrain, r.maxStrain);

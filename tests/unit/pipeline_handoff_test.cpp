@@ -125,9 +125,9 @@ TEST(PipelineHandoff, DrapeStageContinuesFromThePreviewStagesPositionsVelocities
 }
 
 // A preview run alone stops at rest by the drape's own test on the same model, and says so; a drape started from
-// that state finds it at rest too and barely moves it.
+// that state finds it at rest too and barely moves it. The default t-shirt on a coarse mesh.
 TEST(PipelineHandoff, PreviewAloneStopsAtRestByTheDrapesTest) {
-  Simulation preview(libraryScene("tablecloth.json", {{"mesh.target_edge_length", "0.08"}, {"solver.stage", "preview"}}));
+  Simulation preview(libraryScene("default.json", {{"mesh.target_edge_length", "0.035"}, {"solver.stage", "preview"}}));
   StepReport last;
   while (!preview.finished()) {
     last = preview.step();
@@ -140,7 +140,7 @@ TEST(PipelineHandoff, PreviewAloneStopsAtRestByTheDrapesTest) {
   rest.stage = Stage::Drape;
   rest.previewPositions = rest.positions;
   rest.previewTime = rest.time;
-  Simulation drape(libraryScene("tablecloth.json", {{"mesh.target_edge_length", "0.08"}, {"solver.stage", "drape"}}),
+  Simulation drape(libraryScene("default.json", {{"mesh.target_edge_length", "0.035"}, {"solver.stage", "drape"}}),
                    rest);
   ASSERT_TRUE(drape.resumed());
   while (!drape.finished()) ASSERT_NE(drape.step().status, StepStatus::Diverged);

@@ -13,6 +13,9 @@
 namespace drape::newton {
 namespace {
 
+// How many times QuasiNewtonSettings::maxIterations a step may take while a term is not satisfied.
+constexpr int kUnsatisfiedIterations = 4;
+
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
@@ -98,7 +101,19 @@ NewtonStatus NewtonSolver::attemptQuasiNewton(double h, double scale, Eigen::Vec
   Eigen::VectorXd q, r, d, xt, gt;
   NewtonStatus status = NewtonStatus::MaxIterations;
   bool phiKnown = false;
-  for (int it = 0; it < m_qnSettings.maxIterations; ++it) {
+  // Past maxIterations the solve goes on, up to kUnsatisfiedIterations times as many, only while a term's own bound is
+  // violated (Energy::satisfied: a vertex pushed deep into the body by an under-converged step).
+  auto satisfied = [&](const Eigen::VectorXd& at) {
+    for (const auto& e : m_energies)
+      if (!e->satisfied(at)) return false;
+    return true;
+  };
+  const int cap = kUnsatisfiedIterations * m_qnSettings.maxIterations;
+  for (int it = 0; it < cap; ++it) {
+    // An iterate that violates a term's bound which x meets is no step (PolyFEM's isStepValid): the line search
+    // backtracks from it, so that an under-converged step cannot carry a vertex through the contact band.
+    const bool valid = satisfied(x);  // at the last evaluated point: the contact set is cached
+    if (it >= m_qnSettings.maxIterations && valid) break;
     if (m_cancel.load()) return NewtonStatus::Cancelled;
     // H_0 with the changing terms' stiffness where they act at this iterate (a vertex pushed into the body within the
     // step meets the body's stiffness there, which the step's first H_0 did not know).
@@ -140,7 +155,8 @@ NewtonStatus NewtonSolver::attemptQuasiNewton(double h, double scale, Eigen::Vec
     xt = x + d;
     gradient(xt, false, gt);
     ++report.lineSearchEvaluations;
-    bool accepted = gt.allFinite() && gt.dot(d) <= -(1.0 - 2.0 * m_qnSettings.armijo) * slope;
+    bool accepted = gt.allFinite() && gt.dot(d) <= -(1.0 - 2.0 * m_qnSettings.armijo) * slope &&
+                    (!valid || satisfied(xt));
     const bool fullGradient = gt.allFinite();
     double step = 1.0;
     if (!accepted) {
@@ -150,7 +166,7 @@ NewtonStatus NewtonSolver::attemptQuasiNewton(double h, double scale, Eigen::Vec
         xt = x + step * d;
         const double phit = potential(xt);
         ++report.lineSearchEvaluations;
-        if (std::isfinite(phit) && phit <= phi + m_qnSettings.armijo * step * slope) {
+        if (std::isfinite(phit) && phit <= phi + m_qnSettings.armijo * step * slope && (!valid || satisfied(xt))) {
           accepted = true;
           phi = phit;
           break;

@@ -1,5 +1,7 @@
 #include "sim/newton_stage.h"
 
+#include <algorithm>
+
 #include "drape/pd/pd_preconditioner.h"
 
 namespace drape {
@@ -96,6 +98,15 @@ std::unique_ptr<StageSolver> makePreviewStage(const model::ClothModel& model, co
   strategy.triangleDomain = preconditioner->triangleDomain();
   strategy.preconditioner = std::move(preconditioner);
   return std::make_unique<NewtonStage>(Stage::Preview, std::move(m), n, std::move(contact), std::move(strategy));
+}
+
+std::unique_ptr<StageSolver> makeSettleStage(const model::ClothModel& model, const SimulationSettings& settings,
+                                             ContactTerms contact, const StageStart& start) {
+  newton::NewtonSettings n = settings.drape.newton;
+  n.relaxation = false;
+  n.startStep = n.hMax;
+  n.hMax = std::max(n.hMax, settings.preview.timeStep);
+  return std::make_unique<NewtonStage>(Stage::Preview, startingAt(model, start), n, std::move(contact));
 }
 
 std::unique_ptr<StageSolver> makeDrapeStage(const model::ClothModel& model, const SimulationSettings& settings,

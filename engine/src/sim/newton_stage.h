@@ -60,6 +60,11 @@ class NewtonStage final : public StageSolver {
 std::unique_ptr<StageSolver> makePreviewStage(const model::ClothModel& model, const SimulationSettings& settings,
                                               ContactTerms contact, const StageStart& start, bool placed);
 
+// A preview run alone, once it has settled: Newton's steps on the same model, labelled the preview, from start (its
+// positions, velocities and time), from the drape's h_max growing up to the preview's step, without relaxation.
+std::unique_ptr<StageSolver> makeSettleStage(const model::ClothModel& model, const SimulationSettings& settings,
+                                             ContactTerms contact, const StageStart& start);
+
 // The drape stage: Newton. From the placed garment (placed true) with its relaxation; from a preview's state with
 // its step starting at h_max and growing up to h_max_factor_after_preview times it, without relaxation unless
 // relaxation_after_preview.

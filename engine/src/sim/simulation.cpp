@@ -122,6 +122,7 @@ void Simulation::startPreview(const ResumeState* from) {
                              start, from == nullptr);
   m_stageStart = start.time;
   m_settledSince = -1.0;
+  m_settling = false;
   m_atRest = false;
   if (m_dragVertex >= 0) m_stage->setDrag(m_dragVertex, m_dragTarget);
 }
@@ -140,8 +141,7 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, const Eigen::Matr
   if (m_dragVertex >= 0) m_stage->setDrag(m_dragVertex, m_dragTarget);
 }
 
-bool Simulation::previewHandsOver(const StepReport& report, const Eigen::VectorXd& before) {
-  if (report.status == StepStatus::Diverged) return true;
+bool Simulation::previewSettled(const StepReport& report, const Eigen::VectorXd& before) {
   const bool stepped = report.status == StepStatus::Converged || report.status == StepStatus::MaxIterations;
   // Speeds of the step's motion, not the velocities carried on (zeroed while the preview relaxes).
   bool slow = false;
@@ -156,15 +156,29 @@ bool Simulation::previewHandsOver(const StepReport& report, const Eigen::VectorX
     m_settledSince = -1.0;
   else if (m_settledSince < 0.0)
     m_settledSince = time();
-  const bool settled = m_settledSince >= 0.0 && time() - m_settledSince >= kHandOverWindow;
-  const bool timeUp = time() - m_stageStart >= m_settings.preview.maxTime - 1e-12;
-  return settled || timeUp;
+  return m_settledSince >= 0.0 && time() - m_settledSince >= kHandOverWindow;
+}
+
+void Simulation::startSettling() {
+  StageStart start;
+  start.positions = m_stage->positions();
+  start.velocities = m_stage->velocities();
+  start.time = m_stage->time();
+  m_stage = makeSettleStage(m_model->cloth, m_settings, makeContactTerms(m_scene, m_garment, m_model->collider),
+                            start);
+  m_settling = true;
+  m_atRest = false;
+  if (m_dragVertex >= 0) m_stage->setDrag(m_dragVertex, m_dragTarget);
 }
 
 void Simulation::setDrag(int vertex, const Eigen::Vector3d& target) {
   if (vertex >= m_garment.vertexCount()) throw std::invalid_argument("drag: vertex index out of range");
   m_dragVertex = vertex < 0 ? -1 : vertex;
   m_dragTarget = target;
+  if (m_settling && m_dragVertex >= 0) {  // pulled again: the garment moves, and L-BFGS takes the steps again
+    const ResumeState now = resumeState();
+    startPreview(&now);
+  }
   m_stage->setDrag(m_dragVertex, target);
   if (m_dragVertex >= 0) m_atRest = false;  // a pulled garment is not at rest
 }
@@ -238,10 +252,16 @@ StepReport Simulation::step() {
       m_divergedReason = std::move(reason);
     }
   }
-  if (report.stage == Stage::Preview && m_settings.plan == StagePlan::Full && m_divergedReason.empty() &&
-      report.status != StepStatus::Cancelled && previewHandsOver(report, before)) {
-    // The drape goes on from the preview's positions, velocities and time: nothing else carries over.
-    startDrape(x, rowsOf(m_stage->velocities()), time());
+  if (report.stage == Stage::Preview && !m_settling && m_divergedReason.empty() &&
+      report.status != StepStatus::Cancelled) {
+    const bool settled = previewSettled(report, before);
+    const bool timeUp = time() - m_stageStart >= m_settings.preview.maxTime - 1e-12;
+    if (m_settings.plan == StagePlan::Full && (settled || timeUp || report.status == StepStatus::Diverged)) {
+      // The drape goes on from the preview's positions, velocities and time: nothing else carries over.
+      startDrape(x, rowsOf(m_stage->velocities()), time());
+    } else if (m_settings.plan == StagePlan::Preview && settled) {
+      startSettling();
+    }
   }
   report.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;

@@ -62,6 +62,13 @@ class Energy {
   // Blocks between vertex pairs listed by addCouplings land in the static pattern; others (contacts)
   // go to the dynamic part automatically through BlockMatrix::addBlock or explicitly via addDynamicBlock.
   virtual void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const = 0;
+  // Whether x meets the term's own bound, which a solve stopped after a few iterations must not leave violated
+  // (avatar contact: no vertex deeper inside the body than the contact thickness). The quasi-Newton step iterates on
+  // while a term is not satisfied. Default: always.
+  virtual bool satisfied(const Eigen::VectorXd& x) const {
+    (void)x;
+    return true;
+  }
   // The gradient at a point no step ends at (a step's first Newton iterate x_n + h v_n: the accepted state always
   // comes from a line-search pass). Energies that record their gradient passes for the next step (the step-start
   // gradient, the dissipations' x_n data) skip the recording here. Default: addGradient.

@@ -146,8 +146,9 @@ class Simulation {
   bool m_atRest = false;
   bool m_resumed = false;
   double m_stageStart = 0.0;       // scene time at which the current stage started, s
-  double m_settledSince = -1.0;    // full pipeline's preview: scene time since which it has moved slower than
+  double m_settledSince = -1.0;    // the preview: scene time since which it has moved slower than
                                    // solver.preview.handoff_speed (-1: it has not)
+  bool m_settling = false;         // a preview run alone settles by Newton's steps (startSettling)
   Eigen::MatrixX3d m_handOver;     // the state the preview handed to the drape; no rows: the drape started placed
   double m_handOverTime = 0.0;     // scene time of m_handOver, s
   bool m_drapeOwnBudget = false;   // the drape started from a resumed preview state (endReason)
@@ -163,9 +164,13 @@ class Simulation {
   // Starts the Newton drape from positions and velocities (|V| x 3; no rows: the placed garment, relaxing) at scene
   // time `time`.
   void startDrape(const Eigen::MatrixX3d& positions, const Eigen::MatrixX3d& velocities, double time);
-  // The full pipeline's hand-over: the preview's speeds (the step's motion) have stayed below
-  // solver.preview.handoff_speed for 0.1 s, or its time is up, or it diverged.
-  bool previewHandsOver(const StepReport& report, const Eigen::VectorXd& before);
+  // The preview has settled: the speeds of its steps' motion (positions before the step: 3|V|) have stayed below
+  // solver.preview.handoff_speed for 0.1 s, outside its relaxation and while nothing is dragged. The full pipeline
+  // then hands over to the drape; a preview run alone settles by Newton's steps (startSettling).
+  bool previewSettled(const StepReport& report, const Eigen::VectorXd& before);
+  // A preview run alone, settled: Newton's steps at the preview's step take it to rest by the drape's own test, which
+  // L-BFGS's few iterations a step cannot pass (their errors keep the garment creeping). A drag goes back to L-BFGS.
+  void startSettling();
 };
 
 // The simulation of scene's stage started at the positions of a garment state file (drape --from, the GUI's Load

@@ -149,6 +149,22 @@ const std::vector<collision::ContactStencil>& AvatarContactEnergy::contacts(cons
   return m_stencils;
 }
 
+bool AvatarContactEnergy::satisfied(const Eigen::VectorXd& x) const {
+  const double th = m_params.thickness;
+  for (const collision::ContactStencil& c : contacts(x))
+    if (c.distance < -th) return false;
+  if (m_startPositions.size() != x.size()) return true;
+  // A vertex outside at the step start that moved farther than its distance plus the search radius may have passed
+  // through the contact band deeper inside than the queries look (1-Lipschitz): ask the collider itself.
+  for (int v = 0; v < m_vertexCount; ++v) {
+    if (m_startKind[v] == StartKind::Far || m_startDistance[v] < -th) continue;
+    const Eigen::Vector3d p = x.segment<3>(3 * v);
+    if ((p - m_startPositions.segment<3>(3 * v)).norm() <= m_startDistance[v] + m_params.searchRadius) continue;
+    if (m_collider->signedDistance(p) < -th) return false;
+  }
+  return true;
+}
+
 double AvatarContactEnergy::value(const Eigen::VectorXd& x) const {
   std::lock_guard lock(m_mutex);
   update(x);

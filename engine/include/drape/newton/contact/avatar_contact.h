@@ -71,6 +71,8 @@ class AvatarContactEnergy : public Energy {
   double value(const Eigen::VectorXd& x) const override;
   void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
   void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const override;
+  // No vertex deeper inside the body than the contact thickness (a vertex already that deep at the step start aside).
+  bool satisfied(const Eigen::VectorXd& x) const override;
 
   // Vertices with signed distance < thickness at x: one-vertex stencils (weight 1), distance signed, normal the
   // outward gradient of the signed distance. Used by friction for its normal forces.
