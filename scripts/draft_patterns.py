@@ -379,7 +379,7 @@ def add_top(g, body, opts, z_front, z_back, prefix=""):
     Each sleeve half is placed in its plane with its top seam along the arm, starting sleeve_offset cm out along
     the arm from the shoulder point and sleeve_raise cm above the arm's line. The stitches pull each seam closed
     along the straight line between its two sides, so the underarm seam must pass below the arm and beside the
-    torso, and the top seam above the arm (tests/unit/garment_library_test.cpp checks every stitch pair's line
+    torso, and the top seam above the arm (tests/unit/garment/garment_library_test.cpp checks every stitch pair's line
     against the body).
     """
     front, sides = bodice(body, prefix + "front", True, opts)

@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "../render/synthetic_scenes.h"
+#include "synthetic_scenes.h"
 #include "drape/qt/viewport_widget.h"
 #include "drape/render/headless.h"
 #include "drape/render/image_compare.h"

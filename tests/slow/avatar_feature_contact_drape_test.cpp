@@ -1,5 +1,5 @@
 // The default scene's drape with the avatar's feature contact (avatar_feature_contact.h): the mannequin's bust points
-// no longer show through the t-shirt. The contact's unit tests are in tests/unit/avatar_feature_contact_test.cpp.
+// no longer show through the t-shirt. The contact's unit tests are in tests/unit/newton/contact/avatar_feature_contact_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 // An exploded garment ends the run Diverged in every stage (drape, both previews, the pipeline), with the state before
 // the step that exploded kept and the triangle that tore named. The exploding scene is the default t-shirt with
-// nothing to hold it together (exploded_state_support.h); a free fall is checked in tests/unit/exploded_state_test.cpp.
+// nothing to hold it together (exploded_state_support.h); a free fall is checked in tests/unit/sim/exploded_state_test.cpp.
 #include <gtest/gtest.h>
 
 #include <string>

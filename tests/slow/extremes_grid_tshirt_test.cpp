@@ -2,7 +2,7 @@
 // cell in the drape for the first 0.05 s (the seams closing, where the extremes bite first). Every cell must hold:
 // finite, diverged only where the garment exploded and the run said so, nothing inside the body beyond the contact
 // thickness. The grid's cells themselves are checked in
-// tests/unit/extremes_grid_test.cpp.
+// tests/unit/sim/extremes_grid_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cstdio>

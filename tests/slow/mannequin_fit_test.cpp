@@ -1,7 +1,7 @@
 // The parametric mannequin against the bodies it is made for: the shipped female and male measurements give closed
 // meshes that fit their girths, and the mannequin made from GarmentCode's mean_all.yaml lies within a centimetre of
 // the real mean_all body over torso and legs (mean_all.obj is read only here). The rest of the mannequin's tests are in
-// tests/unit/mannequin_test.cpp.
+// tests/unit/avatar/mannequin_test.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>

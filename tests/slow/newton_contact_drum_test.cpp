@@ -1,6 +1,6 @@
 // A cloth stretched over a ball like a drum skin rests within its contact thickness, not pressed onto the ball.
 // Distances are measured against the analytic sphere, independently of the solver's own collider (an icosphere of
-// the same radius). The tablecloth settling on the sphere is in tests/unit/newton_contact_settle_test.cpp.
+// the same radius). The tablecloth settling on the sphere is in tests/unit/newton/newton_contact_settle_test.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -2,7 +2,7 @@
 // A-line skirt's drape from the preview's state: without it the paper's absolute tau_n (1e-3 kg m/s) accepted steps
 // whose residual means velocity errors larger than the early stop's rest speed, about 1 % of the vertices kept
 // creeping (at the back hem, beside the left leg) and the pipeline never came to rest. Runs ~15 s. The rule itself
-// is checked on a hanging cloth in tests/unit/newton_rest_convergence_test.cpp.
+// is checked on a hanging cloth in tests/unit/newton/newton_rest_convergence_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cstdio>

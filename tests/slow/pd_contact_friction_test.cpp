@@ -1,7 +1,7 @@
 // Friction of the PD preview's avatar contact (avatar_collision.h, issue 6) bounded by the inertial load does not hold
 // a landing's stretch in place: the bench's tablecloth dropped onto a sphere, run with the current default and with
 // the first version (ContactTargetKind::Reproject with FrictionLoadKind::CollisionFree), so the bounds below are shown
-// to separate the two. The contact targets' other tests are in tests/unit/pd_contact_target_test.cpp.
+// to separate the two. The contact targets' other tests are in tests/unit/pd/pd_contact_target_test.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>

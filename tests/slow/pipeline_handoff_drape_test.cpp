@@ -1,6 +1,6 @@
 // The preview -> drape hand-off of the full pipeline on library garments: the drape's longer steps after the preview
 // settle the default scene to nearly the same drape as h_max itself. The rest of the hand-off's tests are in
-// tests/unit/pipeline_handoff_test.cpp.
+// tests/unit/sim/pipeline_handoff_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cstdio>

@@ -1,5 +1,5 @@
 // The placement fit's drape (garment/placement_fit.h): after a short drape GarmentCode's shirt, fitted onto the broad,
-// tall mannequin, is less strained than as laid out. The fit itself is checked in tests/unit/placement_fit_test.cpp.
+// tall mannequin, is less strained than as laid out. The fit itself is checked in tests/unit/garment/placement_fit_test.cpp.
 #include <gtest/gtest.h>
 
 #include <utility>

@@ -1,6 +1,6 @@
 // The quasi-Newton preview (the default preview) on the default scene: Newton's rest state is its rest
 // state, and it settles every fabric preset at its long step without tearing or entering the body. Its step and
-// preconditioner are checked in tests/unit/quasi_newton_preview_test.cpp.
+// preconditioner are checked in tests/unit/sim/quasi_newton_preview_test.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>

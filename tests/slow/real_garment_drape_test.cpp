@@ -1,7 +1,7 @@
 // Real garments draped from their placed panels on a coarse mesh (4 cm edges), each tens of seconds in Release:
 // GarmentCode's pencil dress (../shared/data/garmentcode) on Drape's generated female mannequin, and
 // Garment-Pattern-Generator's skirt moved onto GarmentCode's mean_all body by its scene's placement.translate. The
-// checks are those of real_garment_drape_support.h; the shirts' drapes are in tests/unit/real_garment_drape_test.cpp.
+// checks are those of real_garment_drape_support.h; the shirts' drapes are in tests/unit/newton/real_garment_drape_test.cpp.
 #include <gtest/gtest.h>
 
 #include <string>

@@ -11,7 +11,12 @@ SimulationSettings simulationSettingsFrom(const Scene& scene) {
   out.maxSimTime = s.number("solver.max_sim_time");
   out.maxSteps = s.integer("solver.max_steps");
   out.gravity = s.number("sim.gravity");
-  out.contactThickness = contactThickness(scene);
+  out.contact.stiffness = s.number("contact.stiffness");
+  out.contact.thickness = contactThickness(scene);
+  out.contact.avatarFeatures = s.flag("contact.avatar_features");
+  out.contact.selfCollision = s.flag("contact.self_collision");
+  out.contact.friction = s.flag("contact.friction");
+  out.contact.frictionMajorizer = s.flag("contact.friction_majorizer");
   PreviewStageSettings& p = out.preview;
   p.timeStep = s.number("solver.preview.time_step");
   p.iterations = s.integer("solver.preview.iterations");

@@ -6,37 +6,36 @@
 
 #include "drape/newton/contact/avatar_feature_contact.h"
 #include "drape/newton/contact/contact_factory.h"
-#include "sim/cloth_model_builder.h"
 
 namespace drape {
 
-ContactTerms makeContactTerms(const Scene& scene, const Garment& garment,
+ContactTerms makeContactTerms(const ContactSettings& settings, const Scene& scene, const Garment& garment,
                               std::shared_ptr<const collision::AvatarCollider> collider) {
   ContactTerms terms;
-  terms.thickness = contactThickness(scene);
+  terms.thickness = settings.thickness;
   terms.collider = std::move(collider);
   newton::ContactSetup setup;
   setup.avatar = terms.collider;
-  setup.avatarContact.stiffness = scene.settings.number("contact.stiffness");
+  setup.avatarContact.stiffness = settings.stiffness;
   setup.avatarContact.thickness = terms.thickness;
   double stretch = std::max(scene.fabric.stretchWarp, scene.fabric.stretchWeft);
   for (const auto& [panel, fabric] : scene.panelFabrics)
     stretch = std::max({stretch, fabric.stretchWarp, fabric.stretchWeft});
   setup.avatarContact.insideStiffnessFactor = newton::insideStiffnessFactorFor(setup.avatarContact, stretch);
-  if (setup.avatar && scene.settings.flag("contact.avatar_features") && garment.triangles.rows() > 0) {
+  if (setup.avatar && settings.avatarFeatures && garment.triangles.rows() > 0) {
     // A triangle deeper behind a feature than half an edge is not one the body poked through.
     const double edge = collision::meanEdgeLength(garment.triangles, garment.positions);
     setup.featureRadius = collision::featureRadiusFor(edge, terms.thickness);
     setup.featureReach = 0.5 * edge;
   }
-  setup.selfCollision = scene.settings.flag("contact.self_collision");
+  setup.selfCollision = settings.selfCollision;
   setup.selfContact = setup.avatarContact;
   // Friction only where there is something to rub against and a non-zero coefficient.
-  if (scene.settings.flag("contact.friction") && (setup.avatar || setup.selfCollision)) {
+  if (settings.friction && (setup.avatar || setup.selfCollision)) {
     double mu = scene.fabric.friction;
     for (const auto& [panel, fabric] : scene.panelFabrics) mu = std::max(mu, fabric.friction);
     setup.frictionCoefficient = mu;
-    setup.frictionMajorizer = scene.settings.flag("contact.friction_majorizer");
+    setup.frictionMajorizer = settings.frictionMajorizer;
   }
   // Non-conforming seams: their edge stitches are excluded from cloth-cloth contact like the vertex pairs.
   std::vector<model::EdgeStitch> edgeStitches;

@@ -11,6 +11,7 @@
 #include "drape/garment/garment.h"
 #include "drape/newton/energy.h"
 #include "drape/scene/scene.h"
+#include "drape/scene/stage_settings.h"
 
 namespace drape {
 
@@ -24,8 +25,9 @@ struct ContactTerms {
   const newton::AvatarFeatureContactEnergy* featureEnergy = nullptr;
 };
 
-// collider: the scene's merged collider (null when it has none), shared with the preview solver.
-ContactTerms makeContactTerms(const Scene& scene, const Garment& garment,
+// settings: the scene's contact settings; scene: its fabrics (their stretch stiffness and friction coefficients);
+// collider: the scene's merged collider (null when it has none), shared by the stages.
+ContactTerms makeContactTerms(const ContactSettings& settings, const Scene& scene, const Garment& garment,
                               std::shared_ptr<const collision::AvatarCollider> collider);
 
 // |V| mask, 1 where the garment vertex (x flat, 3|V|) is within 1.5 contact thicknesses of a collider (a fresh

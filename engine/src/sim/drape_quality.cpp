@@ -145,19 +145,6 @@ QualityCheck restCheck(const std::string& endStatus, const QualitySettings& s) {
 
 }  // namespace
 
-QualitySettings qualitySettingsFrom(const Settings& settings) {
-  QualitySettings s;
-  s.maxStrain = settings.number("quality.max_strain");
-  s.maxInsideFraction = settings.number("quality.max_inside_fraction");
-  s.maxPenetrationDepth = settings.number("quality.max_penetration_depth");
-  s.nearSkinDistance = settings.number("quality.near_skin_distance");
-  s.maxNearSkinFraction = settings.number("quality.max_near_skin_fraction");
-  s.maxSelfIntersections = settings.integer("quality.max_self_intersections");
-  s.minOutwardFraction = settings.number("quality.min_outward_fraction");
-  s.requireRest = settings.flag("quality.require_rest");
-  return s;
-}
-
 const QualityCheck* QualityReport::find(std::string_view name) const {
   for (const QualityCheck& c : checks)
     if (c.name == name) return &c;

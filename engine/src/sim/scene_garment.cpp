@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-#include "cloth_model_builder.h"
+#include "drape/scene/stage_settings.h"
 #include "drape/garment/placement_fit.h"
 
 namespace drape {
@@ -17,17 +17,9 @@ std::string formatPoint(const Eigen::Vector3d& p) {
 
 }  // namespace
 
-MeshingOptions meshingOptions(const Scene& scene) {
-  MeshingOptions o;
-  o.targetEdgeLength = scene.settings.number("mesh.target_edge_length");
-  o.conformingSeams = scene.settings.flag("mesh.conforming_seams");
-  o.placementOffset = scene.settings.vector3("placement.translate");
-  return o;
-}
-
 Garment buildSceneGarment(const Scene& scene, Diagnostics* diagnostics) {
   Garment garment = buildGarment(scene.pattern, meshingOptions(scene), diagnostics);
-  if (scene.hasAvatar() && scene.settings.flag("placement.fit"))
+  if (scene.hasAvatar() && placementFit(scene))
     fitPlacementToAvatar(scene.pattern, garment, scene.avatar, {contactThickness(scene)}, diagnostics);
   if (!diagnostics || !scene.hasAvatar() || garment.vertexCount() == 0) return garment;
   const BoundingBox body = boundsOf(scene.avatar.vertices);

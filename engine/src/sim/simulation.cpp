@@ -65,7 +65,7 @@ ResumeState startStateAt(StagePlan plan, const Eigen::MatrixX3d& positions) {
 
 std::unique_ptr<Simulation> simulationFromStateFile(Scene scene, const std::filesystem::path& file) {
   const GarmentState state = readGarmentState(file);
-  const StagePlan plan = scene.settings.stagePlan();
+  const StagePlan plan = simulationSettingsFrom(scene).plan;
   auto simulation = std::make_unique<Simulation>(std::move(scene), startStateAt(plan, state.positions));
   checkGarmentState(state, simulation->garment(), file);
   return simulation;
@@ -118,7 +118,7 @@ void Simulation::startPreview(const ResumeState* from) {
     start.velocities = flatOf(from->velocities);
     start.time = from->time;
   }
-  m_stage = makePreviewStage(m_model->cloth, m_settings, makeContactTerms(m_scene, m_garment, m_model->collider),
+  m_stage = makePreviewStage(m_model->cloth, m_settings, makeContactTerms(m_settings.contact, m_scene, m_garment, m_model->collider),
                              start, from == nullptr);
   m_stageStart = start.time;
   m_settledSince = -1.0;
@@ -134,7 +134,7 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, const Eigen::Matr
   start.time = time;
   m_handOver = positions;
   m_handOverTime = time;
-  m_stage = makeDrapeStage(m_model->cloth, m_settings, makeContactTerms(m_scene, m_garment, m_model->collider), start,
+  m_stage = makeDrapeStage(m_model->cloth, m_settings, makeContactTerms(m_settings.contact, m_scene, m_garment, m_model->collider), start,
                            positions.rows() == 0);
   m_stageStart = time;
   m_atRest = false;
@@ -164,7 +164,7 @@ void Simulation::startSettling() {
   start.positions = m_stage->positions();
   start.velocities = m_stage->velocities();
   start.time = m_stage->time();
-  m_stage = makeSettleStage(m_model->cloth, m_settings, makeContactTerms(m_scene, m_garment, m_model->collider),
+  m_stage = makeSettleStage(m_model->cloth, m_settings, makeContactTerms(m_settings.contact, m_scene, m_garment, m_model->collider),
                             start);
   m_settling = true;
   m_atRest = false;

@@ -120,7 +120,7 @@ struct PreviewSettings {
 // weight (the paper's 1e6 N/m), raised to 50 x the fabric's stiffness so that a contact outweighs the fabric and
 // the stitches (10 x). Every fabric preset (at most 2e4 N/m) keeps 1e6; a 1e7 N/m fabric at a 0.1 s step otherwise
 // converged with a vertex 51 mm inside the tablecloth's
-// sphere (tests/unit/solver_extremes_test.cpp).
+// sphere (tests/unit/sim/solver_extremes_test.cpp).
 inline double contactWeightFor(double weight, double largestStretch) {
   return std::max(weight, 50.0 * largestStretch);
 }

@@ -6,12 +6,10 @@
 #include "drape/core/diagnostics.h"
 #include "drape/garment/garment.h"
 #include "drape/garment/garment_builder.h"
+#include "drape/scene/meshing_settings.h"
 #include "drape/scene/scene.h"
 
 namespace drape {
-
-// Target edge length, conforming seams and the placement offset from the scene's settings.
-MeshingOptions meshingOptions(const Scene& scene);
 
 // buildGarment with meshingOptions(scene). With an avatar and placement.fit on, fitPlacementToAvatar then moves the
 // panels onto the avatar (clearance: the scene's contact thickness; a warning per panel moved far). It also warns

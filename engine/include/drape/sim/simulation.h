@@ -129,7 +129,7 @@ class Simulation {
   double time() const;
   int steps() const { return m_steps; }
   // Contact thickness the solvers use, metres (contact.thickness, else the thickest fabric, at least 2 mm).
-  double contactThickness() const { return m_settings.contactThickness; }
+  double contactThickness() const { return m_settings.contact.thickness; }
   // The avatar and generated colliders, merged, as the stages' contact sees them; nullptr when the scene has none.
   const collision::AvatarCollider* collider() const;
 

@@ -1,5 +1,5 @@
 #pragma once
-// What the exploded state's tests share (tests/unit/exploded_state_test.cpp and, for every stage,
+// What the exploded state's tests share (tests/unit/sim/exploded_state_test.cpp and, for every stage,
 // tests/slow/exploded_state_stages_test.cpp): the settings no fabric holds together (the softest stretch stiffness
 // the settings admit, no shear or bending stiffness, 1000 m/s^2 gravity and 0.1 s steps) and a library scene with
 // settings overridden.

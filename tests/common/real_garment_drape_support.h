@@ -1,5 +1,5 @@
 #pragma once
-// What the real garments' drapes share (tests/unit/real_garment_drape_test.cpp and the slow ones,
+// What the real garments' drapes share (tests/unit/newton/real_garment_drape_test.cpp and the slow ones,
 // tests/slow/real_garment_drape_test.cpp): a full Newton drape of a scene or of a pattern on an avatar, measured
 // against an independent AvatarCollider on the loaded mesh, and the checks every garment hanging from the shoulders
 // passes.

@@ -1,5 +1,5 @@
 #pragma once
-// What the PD preview's contact target tests share (tests/unit/pd_contact_target_test.cpp and the friction on the
+// What the PD preview's contact target tests share (tests/unit/pd/pd_contact_target_test.cpp and the friction on the
 // landing tablecloth, tests/slow/pd_contact_friction_test.cpp): the first version's settings (re-projected targets,
 // friction bounded by the collision-free load) and a cloth settled on a collider for a number of steps.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 #pragma once
-// What the mannequin's tests share (tests/unit/mannequin_test.cpp and the fits of the shipped and real bodies,
+// What the mannequin's tests share (tests/unit/avatar/mannequin_test.cpp and the fits of the shipped and real bodies,
 // tests/slow/mannequin_fit_test.cpp): girths measured on slices of the mesh, its topology, the mannequin of a
 // measurement file (made once per file), and the checks every mannequin made from measurements passes.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 #pragma once
-// What the placement fit's tests share (tests/unit/placement_fit_test.cpp and the slow drape of the fitted shirt,
+// What the placement fit's tests share (tests/unit/garment/placement_fit_test.cpp and the slow drape of the fitted shirt,
 // tests/slow/placement_fit_drape_test.cpp): the scene with the fit on or off, and GarmentCode's shirt on the broad,
 // tall mannequin (tests/data/bodies/broad_tall.yaml).
 #include <gtest/gtest.h>

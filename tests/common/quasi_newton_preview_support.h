@@ -1,5 +1,5 @@
 #pragma once
-// What the quasi-Newton preview's tests share (tests/unit/quasi_newton_preview_test.cpp and its drapes of the default
+// What the quasi-Newton preview's tests share (tests/unit/sim/quasi_newton_preview_test.cpp and its drapes of the default
 // scene, tests/slow/quasi_newton_preview_drape_test.cpp): the default scene in a stage, with further settings
 // overridden.
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// What the tests of the pipeline's preview -> drape hand-off share (tests/unit/pipeline_handoff_test.cpp and the
+// What the tests of the pipeline's preview -> drape hand-off share (tests/unit/sim/pipeline_handoff_test.cpp and the
 // library garments' hand-offs, tests/slow/pipeline_handoff_drape_test.cpp): a library scene with settings overridden.
 #include <string>
 #include <utility>
