@@ -107,7 +107,7 @@ Scene options (every headless mode):
 
 Solvers (--solver for --simulate and --bench, --simulate for --render; default: the scene's solver.stage):
   none     the placed garment
-  preview  the fast PD-DD preview until it settles
+  preview  the fast preview (the drape's model by L-BFGS) until it is at rest
   drape    the Backward-Euler Newton drape from the placed garment until at rest or solver.max_sim_time
   full     the preview, then the Newton drape from the preview state
   --from STATE.obj starts the stage at the vertex positions of an OBJ that drape wrote for the same scene (none: that

@@ -10,6 +10,7 @@ solver.newton.h_max doubled, and with its relaxation step held), and the preview
 Distances are means over the garment's vertices between two OBJs of the same mesh. Wall times are whole processes.
 
   python3 bench/one_model.py --drape build/app/drape [--old OLD/drape] [--rounds 2] [--only NAME] -o out/one_model.json
+  python3 bench/one_model.py --table out/one_model.json     # the markdown table
 """
 import argparse
 import json
@@ -105,15 +106,47 @@ def measure(args, name, scene, work, rounds):
     return row
 
 
+def span(values, digits=1):
+    lo, hi = min(values), max(values)
+    return f"{lo:.{digits}f}" if f"{lo:.{digits}f}" == f"{hi:.{digits}f}" else f"{lo:.{digits}f}-{hi:.{digits}f}"
+
+
+def table(rows):
+    """The markdown table of docs/BENCHMARKS.md, "One model", from the rows measure() wrote."""
+    print("| scene | Newton alone, s | projective pipeline: s, speed-up, mm | pipeline: s, speed-up, mm | Newton's "
+          "spread, mm | crossing pairs: Newton / projective / pipeline | 1. faithful, mm | 2. rate vs Newton | 4. preview "
+          "to the drape after it, mm |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        newton = r["newton_s"]
+        speed = [n / p for n, p in zip(newton, r["pipeline_s"])]
+        old = ""
+        if "projective_s" in r:
+            oldspeed = [n / p for n, p in zip(newton, r["projective_s"])]
+            old = f"{span(r['projective_s'])}, {span(oldspeed, 2)}x, {r['projective_mm']:.1f}"
+        crossings = " / ".join(str(int(c)) if c is not None else "-" for c in
+                               (r.get("newton_crossings"), r.get("projective_crossings"), r.get("pipeline_crossings")))
+        print(f"| {r['scene']} | {span(newton)} | {old} | {span(r['pipeline_s'])}, {span(speed, 2)}x, "
+              f"{r['pipeline_mm']:.1f} | {r['spread_mm']:.1f} | {crossings} | {r['faithful_mm']:.2f} | "
+              f"{r['rate_ratio']:.2f}x | {r['designer_mm']:.2f} |")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--drape", required=True)
+    parser.add_argument("--table", help="print the markdown table of a report this script wrote, and stop")
+    parser.add_argument("--drape")
     parser.add_argument("--old", help="another build's drape: its pipeline goes in the projective column")
     parser.add_argument("--rounds", type=int, default=2)
     parser.add_argument("--only", action="append", help="scene names to run (default: all)")
     parser.add_argument("--work", default="out/one_model")
-    parser.add_argument("-o", "--output", required=True)
+    parser.add_argument("-o", "--output")
     args = parser.parse_args()
+    if args.table:
+        with open(args.table) as f:
+            table(json.load(f))
+        return
+    if not args.drape or not args.output:
+        parser.error("--drape and -o are required")
     os.makedirs(args.work, exist_ok=True)
     rows = []
     for name, scene in SCENES:

@@ -28,11 +28,9 @@ drape_sweeps="--sweep solver.newton.tolerance=1e-4,1e-2,1e-1 --sweep solver.cg.t
   --sweep solver.newton.h_max=5e-4,2e-3,4e-3,8e-3 --sweep mesh.target_edge_length=0.03,0.04
   --sweep contact.avatar_features=false --sweep contact.self_collision=true --sweep solver.damping.air=0
   --sweep solver.damping.bend=0 --sweep fabric.damping=0"
-preview_sweeps="--sweep solver.preview.local_step=jacobi --sweep solver.preview.domains=1,4
-  --sweep solver.preview.tolerance=1e-4,1e-2 --sweep solver.preview.time_step=0.004166666666666667,0.008333333333333333
-  --sweep solver.preview.max_iterations=10,100 --sweep solver.preview.anderson_window=5"
-full_sweeps="--sweep solver.preview.local_step=jacobi --sweep solver.preview.tolerance=1e-2
-  --sweep solver.preview.max_time=0.25,1 --sweep solver.newton.h_max=2e-3"
+preview_sweeps="--sweep solver.preview.iterations=2,8,16 --sweep solver.preview.domains=1,4
+  --sweep solver.preview.time_step=0.004166666666666667,0.016666666666666666"
+full_sweeps="--sweep solver.preview.iterations=8 --sweep solver.preview.max_time=0.25,1 --sweep solver.newton.h_max=4e-3"
 
 scenes=("$@")
 [ ${#scenes[@]} -eq 0 ] && scenes=(default aline_skirt shirt)

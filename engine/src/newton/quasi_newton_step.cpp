@@ -110,10 +110,7 @@ NewtonStatus NewtonSolver::attemptQuasiNewton(double h, double scale, Eigen::Vec
   };
   const int cap = kUnsatisfiedIterations * m_qnSettings.maxIterations;
   for (int it = 0; it < cap; ++it) {
-    // An iterate that violates a term's bound which x meets is no step (PolyFEM's isStepValid): the line search
-    // backtracks from it, so that an under-converged step cannot carry a vertex through the contact band.
-    const bool valid = satisfied(x);  // at the last evaluated point: the contact set is cached
-    if (it >= m_qnSettings.maxIterations && valid) break;
+    if (it >= m_qnSettings.maxIterations && satisfied(x)) break;  // at the last evaluated point: cached
     if (m_cancel.load()) return NewtonStatus::Cancelled;
     // H_0 with the changing terms' stiffness where they act at this iterate (a vertex pushed into the body within the
     // step meets the body's stiffness there, which the step's first H_0 did not know).
@@ -155,8 +152,7 @@ NewtonStatus NewtonSolver::attemptQuasiNewton(double h, double scale, Eigen::Vec
     xt = x + d;
     gradient(xt, false, gt);
     ++report.lineSearchEvaluations;
-    bool accepted = gt.allFinite() && gt.dot(d) <= -(1.0 - 2.0 * m_qnSettings.armijo) * slope &&
-                    (!valid || satisfied(xt));
+    bool accepted = gt.allFinite() && gt.dot(d) <= -(1.0 - 2.0 * m_qnSettings.armijo) * slope;
     const bool fullGradient = gt.allFinite();
     double step = 1.0;
     if (!accepted) {
@@ -166,7 +162,7 @@ NewtonStatus NewtonSolver::attemptQuasiNewton(double h, double scale, Eigen::Vec
         xt = x + step * d;
         const double phit = potential(xt);
         ++report.lineSearchEvaluations;
-        if (std::isfinite(phit) && phit <= phi + m_qnSettings.armijo * step * slope && (!valid || satisfied(xt))) {
+        if (std::isfinite(phit) && phit <= phi + m_qnSettings.armijo * step * slope) {
           accepted = true;
           phi = phit;
           break;

@@ -165,7 +165,7 @@ const std::map<std::string, std::string>& implementationSwitches() {
 
 // Settings of the projective preview, which is no longer a stage of the simulation: the preview solves the drape's
 // own model (DESIGN.md 5a), and pd-dd's projective solver is a library component measured by its benchmark.
-bool projectivePreviewSetting(const std::string& key) {
+static bool projectivePreviewSetting(const std::string& key) {
   static const std::set<std::string> removed = {
       "solver.preview.method", "solver.preview.tolerance", "solver.preview.max_iterations",
       "solver.preview.anderson_window", "solver.preview.max_halvings", "solver.preview.grow_after_steps",

@@ -23,7 +23,7 @@ class SimulationController : public QObject {
   // latestResumeState())); a running simulation keeps running, without interrupting the step in progress.
   void continueWith(std::shared_ptr<Simulation> simulation);
   void start();    // steps the current simulation in its current stage (also continues after pause or cancel)
-  void preview();  // the fast PD-DD preview (SimulationWorker::startPreview)
+  void preview();  // the fast preview (SimulationWorker::startPreview)
   void drape();    // the Newton drape, from the preview state when a preview has run (SimulationWorker::startDrape)
   void pause();
   void resume();  // same as start()

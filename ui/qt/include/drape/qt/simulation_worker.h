@@ -49,7 +49,7 @@ class SimulationWorker : public QObject {
   int cancelGeneration() const { return m_cancelGeneration.load(); }
   // Thread-safe: the latest state.
   RunState runState() const { return m_state.load(); }
-  // Thread-safe: "placed" (no step yet), "preview" (PD-DD) or "drape" (Newton); empty without a simulation.
+  // Thread-safe: "placed" (no step yet), "preview" (L-BFGS on the drape's model) or "drape" (Newton); empty without a simulation.
   Stage stage() const;  // Placed before a simulation is set
   // Thread-safe: where the simulation is after its latest step (copied after every step), for an edited scene
   // to continue from; nullopt while the simulation is at the placed garment.
@@ -67,7 +67,7 @@ class SimulationWorker : public QObject {
   // is a separate event, so the other slots run between steps). Ignored when a cancel came after the caller
   // read cancelGeneration (pass -1 to skip that check).
   void start(int generation = -1);
-  // The fast PD-DD preview (solver.stage preview): from the placed garment, or continuing a preview.
+  // The fast preview (solver.stage preview): from the placed garment, or continuing a preview.
   // Ignored once the Newton drape has started (Reset first).
   void startPreview(int generation = -1);
   // The accurate Newton drape (solver.stage drape): from the current preview state when a preview has run
