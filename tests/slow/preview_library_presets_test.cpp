@@ -37,10 +37,10 @@ TEST_P(PreviewLibraryPresets, SettlesWholeAndOutsideTheBody) {
       deepest = std::min(deepest, d);
       inside += d < -sim.contactThickness();
     }
-    std::printf("[ PreviewLibraryPresets ] %s in %s: %s at %.2f s after %d steps, largest strain %.1f %%, deepest "
-                "%.1f mm\n",
-                GetParam(), fabric, sim.endReason().c_str(), sim.time(), sim.steps(), 100.0 * last.maxStrain,
-                -1e3 * deepest);
+    std::printf(
+        "[ PreviewLibraryPresets ] %s in %s: %s at %.2f s after %d steps, largest strain %.1f %%, deepest "
+        "%.1f mm\n",
+        GetParam(), fabric, sim.endReason().c_str(), sim.time(), sim.steps(), 100.0 * last.maxStrain, -1e3 * deepest);
     EXPECT_EQ(sim.endReason(), "AtRest");
     EXPECT_LT(last.maxStrain, 1.0);  // whole: the quality verdict's stretch limit
     EXPECT_EQ(inside, 0);

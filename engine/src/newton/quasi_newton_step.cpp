@@ -17,7 +17,9 @@ namespace {
 constexpr int kUnsatisfiedIterations = 4;
 
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double secondsSince(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 // The curvature pairs of a quasi-Newton solve (at most QuasiNewtonSettings::history).
 struct QuasiNewtonHistory {
@@ -72,16 +74,20 @@ NewtonStatus NewtonSolver::attemptQuasiNewton(double h, double scale, Eigen::Vec
   // Phi and its gradient at x.
   auto potential = [&](const Eigen::VectorXd& at) {
     double inertia = 0.0;
-    for (int i = 0; i < n; ++i) inertia += m_mass(i) * (at.segment<3>(3 * i) - prediction.segment<3>(3 * i)).squaredNorm();
+    for (int i = 0; i < n; ++i)
+      inertia += m_mass(i) * (at.segment<3>(3 * i) - prediction.segment<3>(3 * i)).squaredNorm();
     return 0.5 * invH2 * inertia + totalEnergy(at);
   };
   auto gradient = [&](const Eigen::VectorXd& at, bool first, Eigen::VectorXd& g) {
     g = Eigen::VectorXd::Zero(at.size());
     for (const auto& e : m_energies) {
-      if (first) e->addGuessGradient(at, g);
-      else e->addGradient(at, g);
+      if (first)
+        e->addGuessGradient(at, g);
+      else
+        e->addGradient(at, g);
     }
-    for (int i = 0; i < n; ++i) g.segment<3>(3 * i) += invH2 * m_mass(i) * (at.segment<3>(3 * i) - prediction.segment<3>(3 * i));
+    for (int i = 0; i < n; ++i)
+      g.segment<3>(3 * i) += invH2 * m_mass(i) * (at.segment<3>(3 * i) - prediction.segment<3>(3 * i));
   };
 
   t0 = Clock::now();
@@ -143,8 +149,8 @@ NewtonStatus NewtonSolver::attemptQuasiNewton(double h, double scale, Eigen::Vec
       slope = g.dot(d);
     }
     report.linearSolveSeconds += secondsSince(t0);
-    if (!(slope < 0.0) || !d.allFinite()) return rn < m_settings.tauNewton ? NewtonStatus::Converged
-                                                                             : NewtonStatus::Diverged;
+    if (!(slope < 0.0) || !d.allFinite())
+      return rn < m_settings.tauNewton ? NewtonStatus::Converged : NewtonStatus::Diverged;
     // The full step first, judged by the gradient there (needed anyway): by the trapezoidal rule Phi(x + d) - Phi(x)
     // ~ (g + g_t) . d / 2, exact where Phi is quadratic along d, so Armijo's sufficient decrease holds when
     // g_t . d <= (1 - 2 c1) |g . d|. Otherwise a backtracking line search on Phi's values (Armijo).

@@ -10,6 +10,8 @@ MeshingOptions meshingOptions(const Scene& scene) {
   return o;
 }
 
-bool placementFit(const Scene& scene) { return scene.settings.flag("placement.fit"); }
+bool placementFit(const Scene& scene) {
+  return scene.settings.flag("placement.fit");
+}
 
 }  // namespace drape

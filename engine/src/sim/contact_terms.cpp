@@ -41,8 +41,8 @@ ContactTerms makeContactTerms(const ContactSettings& settings, const Scene& scen
   std::vector<model::EdgeStitch> edgeStitches;
   edgeStitches.reserve(garment.edgeStitches.size());
   for (const GarmentEdgeStitch& e : garment.edgeStitches) edgeStitches.push_back({e.vertex, e.a, e.b, e.t});
-  terms.energies = newton::makeContactEnergies(setup, garment.vertexCount(), garment.triangles, garment.stitchPairs,
-                                                  edgeStitches);
+  terms.energies =
+      newton::makeContactEnergies(setup, garment.vertexCount(), garment.triangles, garment.stitchPairs, edgeStitches);
   for (const auto& energy : terms.energies) {
     if (const auto* avatar = dynamic_cast<const newton::AvatarContactEnergy*>(energy.get()))
       terms.avatarEnergy = avatar;

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "drape/collision/avatar_collider.h"
+#include "drape/garment/garment.h"
 #include "drape/newton/contact/avatar_contact.h"
 #include "drape/newton/contact/avatar_feature_contact.h"
-#include "drape/garment/garment.h"
 #include "drape/newton/energy.h"
 #include "drape/scene/scene.h"
 #include "drape/scene/stage_settings.h"

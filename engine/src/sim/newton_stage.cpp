@@ -71,7 +71,9 @@ StepReport NewtonStage::step() {
   return report;
 }
 
-Eigen::VectorXi NewtonStage::contactMask() const { return drape::contactMask(m_contact, m_solver->positions()); }
+Eigen::VectorXi NewtonStage::contactMask() const {
+  return drape::contactMask(m_contact, m_solver->positions());
+}
 
 Eigen::VectorXi NewtonStage::triangleDomains() const {
   const std::vector<int>& d = m_strategy.triangleDomain;

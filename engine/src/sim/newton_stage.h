@@ -23,7 +23,7 @@ struct StageStart {
 struct QuasiNewtonStrategy {
   std::shared_ptr<model::StepPreconditioner> preconditioner;
   newton::QuasiNewtonSettings settings;
-  int domains = 0;                 // the preconditioner's domain count (statistics)
+  int domains = 0;                  // the preconditioner's domain count (statistics)
   std::vector<int> triangleDomain;  // its domain of each garment triangle (snapshots)
 };
 
@@ -48,7 +48,7 @@ class NewtonStage final : public StageSolver {
 
  private:
   Stage m_stage;
-  double m_offset = 0.0;  // scene time at the solver's time 0, s
+  double m_offset = 0.0;   // scene time at the solver's time 0, s
   ContactTerms m_contact;  // the collider and the contact energies' handles (the energies are the solver's)
   QuasiNewtonStrategy m_strategy;
   std::unique_ptr<newton::NewtonSolver> m_solver;

@@ -71,9 +71,13 @@ std::unique_ptr<Simulation> simulationFromStateFile(Scene scene, const std::file
   return simulation;
 }
 
-Simulation::Simulation(Scene scene) : m_scene(std::move(scene)) { build(nullptr); }
+Simulation::Simulation(Scene scene) : m_scene(std::move(scene)) {
+  build(nullptr);
+}
 
-Simulation::Simulation(Scene scene, const ResumeState& from) : m_scene(std::move(scene)) { build(&from); }
+Simulation::Simulation(Scene scene, const ResumeState& from) : m_scene(std::move(scene)) {
+  build(&from);
+}
 
 Simulation::~Simulation() = default;
 
@@ -118,8 +122,9 @@ void Simulation::startPreview(const ResumeState* from) {
     start.velocities = flatOf(from->velocities);
     start.time = from->time;
   }
-  m_stage = makePreviewStage(m_model->cloth, m_settings, makeContactTerms(m_settings.contact, m_scene, m_garment, m_model->collider),
-                             start, from == nullptr);
+  m_stage = makePreviewStage(m_model->cloth, m_settings,
+                             makeContactTerms(m_settings.contact, m_scene, m_garment, m_model->collider), start,
+                             from == nullptr);
   m_stageStart = start.time;
   m_settledSince = -1.0;
   m_settling = false;
@@ -134,7 +139,8 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, const Eigen::Matr
   start.time = time;
   m_handOver = positions;
   m_handOverTime = time;
-  m_stage = makeDrapeStage(m_model->cloth, m_settings, makeContactTerms(m_settings.contact, m_scene, m_garment, m_model->collider), start,
+  m_stage = makeDrapeStage(m_model->cloth, m_settings,
+                           makeContactTerms(m_settings.contact, m_scene, m_garment, m_model->collider), start,
                            positions.rows() == 0);
   m_stageStart = time;
   m_atRest = false;
@@ -164,8 +170,8 @@ void Simulation::startSettling() {
   start.positions = m_stage->positions();
   start.velocities = m_stage->velocities();
   start.time = m_stage->time();
-  m_stage = makeSettleStage(m_model->cloth, m_settings, makeContactTerms(m_settings.contact, m_scene, m_garment, m_model->collider),
-                            start);
+  m_stage = makeSettleStage(m_model->cloth, m_settings,
+                            makeContactTerms(m_settings.contact, m_scene, m_garment, m_model->collider), start);
   m_settling = true;
   m_atRest = false;
   if (m_dragVertex >= 0) m_stage->setDrag(m_dragVertex, m_dragTarget);
@@ -195,24 +201,38 @@ ResumeState Simulation::resumeState() const {
   return r;
 }
 
-Stage Simulation::stage() const { return m_stage->stage(); }
+Stage Simulation::stage() const {
+  return m_stage->stage();
+}
 
-std::vector<std::string> Simulation::terms() const { return m_stage->terms(); }
+std::vector<std::string> Simulation::terms() const {
+  return m_stage->terms();
+}
 
-const collision::AvatarCollider* Simulation::collider() const { return m_model->collider.get(); }
+const collision::AvatarCollider* Simulation::collider() const {
+  return m_model->collider.get();
+}
 
-double Simulation::time() const { return m_stage->time(); }
+double Simulation::time() const {
+  return m_stage->time();
+}
 
 Eigen::MatrixX3d Simulation::positions() const {
   if (!m_divergedReason.empty()) return m_lastGood;
   return rowsOf(m_stage->positions());
 }
 
-void Simulation::requestCancel() { m_stage->requestCancel(); }
+void Simulation::requestCancel() {
+  m_stage->requestCancel();
+}
 
-void Simulation::clearCancel() { m_stage->clearCancel(); }
+void Simulation::clearCancel() {
+  m_stage->clearCancel();
+}
 
-bool Simulation::finished() const { return !endReason().empty(); }
+bool Simulation::finished() const {
+  return !endReason().empty();
+}
 
 std::string Simulation::endReason() const {
   const bool previewOnly = m_settings.plan == StagePlan::Preview;

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "drape/scene/scene.h"
 #include "drape/newton/newton_solver.h"
+#include "drape/scene/scene.h"
 #include "drape/sim/simulation.h"
 #include "pipeline_handoff_support.h"
 
@@ -148,6 +148,38 @@ TEST(PipelineHandoff, PreviewAloneStopsAtRestByTheDrapesTest) {
   const double moved = (drape.positions() - rest.positions).rowwise().norm().mean();
   std::printf("[ PipelineHandoff ] the drape moved the preview's rest state %.3f mm mean\n", 1e3 * moved);
   EXPECT_LT(moved, 1e-3);
+}
+
+// A preview run alone that has settled (Newton's steps) and is pulled again goes back to L-BFGS's long steps, follows
+// the drag, and comes to rest again once let go.
+TEST(PipelineHandoff, SettledPreviewDraggedAgainTakesItsLongStepsAndRestsAgain) {
+  Simulation sim(libraryScene("default.json", {{"mesh.target_edge_length", "0.035"},
+                                               {"solver.stage", "preview"},
+                                               {"solver.max_sim_time", "4"}}));  // time to settle twice
+  StepReport last;
+  while (!sim.finished()) last = sim.step();
+  ASSERT_EQ(sim.endReason(), "AtRest");
+  EXPECT_FALSE(last.quasiNewton);  // settled by Newton's steps
+  // The lowest vertex of the hem, pulled 5 cm out in front.
+  const Eigen::MatrixX3d rest = sim.positions();
+  Eigen::Index grabbed = 0;
+  rest.col(1).minCoeff(&grabbed);
+  const Eigen::Vector3d target = rest.row(grabbed).transpose() + Eigen::Vector3d(0.0, 0.0, 0.05);
+  sim.setDrag(static_cast<int>(grabbed), target);
+  EXPECT_FALSE(sim.finished());
+  for (int i = 0; i < 30; ++i) {
+    last = sim.step();
+    ASSERT_NE(last.status, StepStatus::Diverged);
+    EXPECT_TRUE(last.quasiNewton) << "step " << i;
+    EXPECT_EQ(last.stage, Stage::Preview);
+  }
+  const double before = (rest.row(grabbed).transpose() - target).norm();
+  const double after = (sim.positions().row(grabbed).transpose() - target).norm();
+  std::printf("[ PipelineHandoff ] dragged vertex %.1f -> %.1f mm from the target\n", 1e3 * before, 1e3 * after);
+  EXPECT_LT(after, 0.5 * before);
+  sim.setDrag(-1, Eigen::Vector3d::Zero());
+  while (!sim.finished()) ASSERT_NE(sim.step().status, StepStatus::Diverged);
+  EXPECT_EQ(sim.endReason(), "AtRest");
 }
 
 }  // namespace

@@ -31,10 +31,10 @@ struct AssemblyOptions {
 struct StepContext {
   const Eigen::VectorXd* previousPositions = nullptr;   // x_n, start of the step
   const Eigen::VectorXd* previousVelocities = nullptr;  // v_n, start of the step
-  double h = 1e-3;               // time step, seconds
-  double time = 0.0;             // simulated time at the start of the step, seconds
-  double stiffnessScale = 1.0;   // in (0, 1]: ramp of elastic stiffness during initial relaxation (paper 5.2)
-  AssemblyOptions assembly;      // speed-up switches (energies may ignore them)
+  double h = 1e-3;                                      // time step, seconds
+  double time = 0.0;                                    // simulated time at the start of the step, seconds
+  double stiffnessScale = 1.0;  // in (0, 1]: ramp of elastic stiffness during initial relaxation (paper 5.2)
+  AssemblyOptions assembly;     // speed-up switches (energies may ignore them)
 };
 
 // One term E(x) of the incremental potential, in joules, as a function of the end-of-step positions x

@@ -16,7 +16,7 @@ struct QualitySettings {
   // normal points away from it: a panel wound into the body renders in the inside colour and exports inside out.
   // Folds and crumples lying on the body turn a few faces over legitimately.
   double minOutwardFraction = 0.98;
-  bool requireRest = true;            // the run must end at rest (end status "AtRest")
+  bool requireRest = true;  // the run must end at rest (end status "AtRest")
 };
 QualitySettings qualitySettingsFrom(const Settings& settings);
 

@@ -30,19 +30,19 @@ struct DrapeStageSettings {
 
 // The contact terms both stages solve (contact.*).
 struct ContactSettings {
-  double stiffness = 1e3;          // N/m, penalty of avatar and cloth contact
-  double thickness = 2e-3;         // m (contact.thickness, else the thickest fabric, at least 2 mm)
-  bool avatarFeatures = true;      // the avatar's sharp points push garment triangles
-  bool selfCollision = false;      // cloth-cloth contact
-  bool friction = true;            // Coulomb friction (where a fabric's coefficient is above 0)
-  bool frictionMajorizer = true;   // a step's first Newton iteration takes friction's isotropic majorizer
+  double stiffness = 1e3;         // N/m, penalty of avatar and cloth contact
+  double thickness = 2e-3;        // m (contact.thickness, else the thickest fabric, at least 2 mm)
+  bool avatarFeatures = true;     // the avatar's sharp points push garment triangles
+  bool selfCollision = false;     // cloth-cloth contact
+  bool friction = true;           // Coulomb friction (where a fabric's coefficient is above 0)
+  bool frictionMajorizer = true;  // a step's first Newton iteration takes friction's isotropic majorizer
 };
 
 struct SimulationSettings {
   StagePlan plan = StagePlan::Drape;
   double maxSimTime = 3.0;  // s of scene time (of the drape's own time for a drape resumed from a preview)
   int maxSteps = 100000;
-  double gravity = -9.81;   // m/s^2 along y
+  double gravity = -9.81;  // m/s^2 along y
   ContactSettings contact;
   PreviewStageSettings preview;
   DrapeStageSettings drape;

@@ -29,15 +29,15 @@ const char* toString(StepStatus status);
 
 struct StepReport {
   StepStatus status = StepStatus::Converged;
-  Stage stage = Stage::Preview;  // Preview or Drape
-  double time = 0.0;           // simulated seconds after the step
-  double h = 0.0;              // step taken, s
-  int iterations = 0;          // Newton iterations (drape) or L-BFGS iterations (preview)
-  int cgIterations = 0;        // PCG iterations of the drape's Newton systems
+  Stage stage = Stage::Preview;   // Preview or Drape
+  double time = 0.0;              // simulated seconds after the step
+  double h = 0.0;                 // step taken, s
+  int iterations = 0;             // Newton iterations (drape) or L-BFGS iterations (preview)
+  int cgIterations = 0;           // PCG iterations of the drape's Newton systems
   int lineSearchEvaluations = 0;  // preview: potential evaluations of its line searches
-  bool quasiNewton = false;    // the step was solved by L-BFGS (the preview)
-  int domains = 0;             // preview: METIS domains of its initial Hessian
-  int splits = 0;              // time-split retries
+  bool quasiNewton = false;       // the step was solved by L-BFGS (the preview)
+  int domains = 0;                // preview: METIS domains of its initial Hessian
+  int splits = 0;                 // time-split retries
   double residual = 0.0;
   double kineticEnergy = 0.0;  // 99th percentile of per-vertex kinetic energy, J
   int contacts = 0;            // garment vertices in contact with a collider
@@ -49,25 +49,25 @@ struct StepReport {
   double assemblyTime = 0.0;
   double gradientTime = 0.0;
   double linearSolveTime = 0.0;
-  bool hessianReused = false;  // drape: the first Newton iteration solved with an earlier step's elastic Hessian
-  int coarseSolves = 0;        // drape: linear solves with the two-level PCG (solver.cg.coarse_aggregate)
+  bool hessianReused = false;    // drape: the first Newton iteration solved with an earlier step's elastic Hessian
+  int coarseSolves = 0;          // drape: linear solves with the two-level PCG (solver.cg.coarse_aggregate)
   int coarseFactorizations = 0;  // drape: coarse matrices factorised for them (solver.cg.coarse_lagged)
-  int coupledSolves = 0;       // drape: linear solves with coupled groups (solver.cg.coupled_groups)
-  bool relaxing = false;       // the step was inside the initial relaxation (velocities zeroed)
-  bool atRest = false;         // early stop reached
+  int coupledSolves = 0;         // drape: linear solves with coupled groups (solver.cg.coupled_groups)
+  bool relaxing = false;         // the step was inside the initial relaxation (velocities zeroed)
+  bool atRest = false;           // early stop reached
 };
 
 // Where a running simulation is, so that the simulation of an edited scene (another fabric, a pin added in the
 // GUI) can continue from it instead of from the placed garment.
 struct ResumeState {
-  Stage stage = Stage::Preview;      // Preview or Drape when captured
-  int vertexCount = 0;               // garment vertices; a garment meshed differently cannot resume
-  Eigen::MatrixX3d positions;        // |V| x 3, metres
-  Eigen::MatrixX3d velocities;       // |V| x 3, m/s
-  double time = 0.0;                 // scene time, s
+  Stage stage = Stage::Preview;       // Preview or Drape when captured
+  int vertexCount = 0;                // garment vertices; a garment meshed differently cannot resume
+  Eigen::MatrixX3d positions;         // |V| x 3, metres
+  Eigen::MatrixX3d velocities;        // |V| x 3, m/s
+  double time = 0.0;                  // scene time, s
   Eigen::MatrixX3d previewPositions;  // the state the preview handed to the drape; no rows when the drape
                                       // started from the placed garment
-  double previewTime = 0.0;          // scene time of previewPositions, s
+  double previewTime = 0.0;           // scene time of previewPositions, s
 };
 
 // The state the scene's stage starts from at given vertex positions (|V| x 3, metres; drape --from): stages
@@ -124,7 +124,7 @@ class Simulation {
   const std::vector<int>& pinned() const { return m_pinned; }
   // Names of the terms the current stage solves ("membrane", "bending", "avatar_contact", ...).
   std::vector<std::string> terms() const;
-  Stage stage() const;  // Preview or Drape
+  Stage stage() const;                 // Preview or Drape
   Eigen::MatrixX3d positions() const;  // |V| x 3, metres
   double time() const;
   int steps() const { return m_steps; }
