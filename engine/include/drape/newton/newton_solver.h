@@ -174,15 +174,9 @@ class NewtonSolver {
   // cursor); vertex < 0 releases it. The "drag" energy exists from the first call on.
   void setDrag(int vertex, const Eigen::Vector3d& target);
   // From the next step on, solves every step by L-BFGS with `preconditioner` as its initial Hessian instead of by
-  // Newton and PCG (the preview on the drape's own model); null: Newton. A step that the quasi-Newton solve leaves
+  // Newton and PCG (the preview stage's strategy, sim/newton_stage.h); null: Newton. A step that the quasi-Newton solve leaves
   // above tau_n after its iterations is kept (MaxIterations is not a failure there).
   void setQuasiNewton(std::shared_ptr<model::StepPreconditioner> preconditioner, QuasiNewtonSettings settings = {});
-  bool quasiNewton() const { return m_quasiNewton != nullptr; }
-  // The next step's size (s), growing from there by the time-splitting rule.
-  void restartStepSize(double h) {
-    m_h = h;
-    m_goodSteps = 0;
-  }
 
   const Eigen::VectorXd& positions() const { return m_x; }   // 3|V|, metres
   const Eigen::VectorXd& velocities() const { return m_v; }  // 3|V|, m/s
