@@ -31,7 +31,7 @@ TEST(QualityVerdict, FinishedDrapeShowsTheVerdictInTheStatisticsDockAndTheLog) {
   // The tablecloth has a sphere collider: every check, the collider's included.
   const QStringList expected = {
       "max_strain",         "inside_fraction", "penetration_depth", "near_skin_fraction", "outward_faces",
-      "self_intersections", "at_rest"};
+      "self_intersections", "seam_gap", "at_rest"};
   ASSERT_EQ(panel->qualityRows(), expected.size());
   for (int row = 0; row < expected.size(); ++row) {
     EXPECT_EQ(panel->qualityCell(row, 0), expected[row]);

@@ -12,57 +12,68 @@
 namespace drape::collision {
 namespace {
 
-struct TriangleResult {
-  int count = 0;
-  int first = -1;  // the smallest partner index (larger than the triangle's own)
-};
-
-}  // namespace
-
-SelfIntersections countSelfIntersections(const Eigen::MatrixX3d& positions, const Eigen::MatrixX3i& triangles,
-                                         const std::vector<std::pair<int, int>>& joined) {
-  const int nv = static_cast<int>(positions.rows());
+// Every crossing pair (t, u), t < u, found by triangle t: partners[t], increasing.
+std::vector<std::vector<int>> crossingPartners(const Eigen::VectorXd& x, const Eigen::MatrixX3i& triangles,
+                                               const std::vector<std::pair<int, int>>& joined) {
+  const int nv = static_cast<int>(x.size() / 3);
   const int nt = static_cast<int>(triangles.rows());
-  SelfIntersections out;
-  if (nt < 2) return out;
+  std::vector<std::vector<int>> partners(nt);
+  if (nt < 2) return partners;
   std::vector<int> parent(nv);
   std::iota(parent.begin(), parent.end(), 0);
   for (const auto& [a, b] : joined) {
     if (a < 0 || b < 0 || a >= nv || b >= nv) continue;
     parent[findRoot(parent, a)] = findRoot(parent, b);
   }
+  const auto p = [&](int tri, int k) -> Eigen::Vector3d { return x.segment<3>(3 * triangles(tri, k)); };
   Eigen::MatrixX3i corner(nt, 3);  // each triangle's vertices as their sets' roots
   std::vector<BoundingBox> boxes(nt);
   for (int t = 0; t < nt; ++t) {
     for (int k = 0; k < 3; ++k) corner(t, k) = findRoot(parent, triangles(t, k));
-    boxes[t] = boxOf(positions.row(triangles(t, 0)).transpose(), positions.row(triangles(t, 1)).transpose(),
-                     positions.row(triangles(t, 2)).transpose());
+    boxes[t] = boxOf(p(t, 0), p(t, 1), p(t, 2));
   }
   const Bvh tree(boxes);
-  std::vector<TriangleResult> results(nt);
   tbb::parallel_for(tbb::blocked_range<int>(0, nt), [&](const tbb::blocked_range<int>& range) {
     for (int t = range.begin(); t != range.end(); ++t) {
-      TriangleResult& r = results[t];
       tree.forEachOverlap(boxes[t], [&](int u) {
         if (u <= t) return;
         for (int i = 0; i < 3; ++i)
           for (int j = 0; j < 3; ++j)
             if (corner(t, i) == corner(u, j)) return;  // neighbours (also across a sewn seam)
-        const auto p = [&](int tri, int k) -> Eigen::Vector3d { return positions.row(triangles(tri, k)).transpose(); };
-        if (!trianglesIntersect(p(t, 0), p(t, 1), p(t, 2), p(u, 0), p(u, 1), p(u, 2))) return;
-        ++r.count;
-        if (r.first < 0 || u < r.first) r.first = u;
+        if (trianglesIntersect(p(t, 0), p(t, 1), p(t, 2), p(u, 0), p(u, 1), p(u, 2))) partners[t].push_back(u);
       });
+      std::sort(partners[t].begin(), partners[t].end());
     }
   });
-  for (int t = 0; t < nt; ++t) {
-    if (results[t].count == 0) continue;
+  return partners;
+}
+
+}  // namespace
+
+SelfIntersections countSelfIntersections(const Eigen::MatrixX3d& positions, const Eigen::MatrixX3i& triangles,
+                                         const std::vector<std::pair<int, int>>& joined) {
+  const Eigen::MatrixXd rowMajor = positions.transpose();  // x, y, z of each vertex in turn
+  const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(rowMajor.data(), rowMajor.size());
+  const std::vector<std::vector<int>> partners = crossingPartners(x, triangles, joined);
+  SelfIntersections out;
+  for (int t = 0; t < static_cast<int>(partners.size()); ++t) {
+    if (partners[t].empty()) continue;
     if (out.firstTriangle < 0) {
       out.firstTriangle = t;
-      out.secondTriangle = results[t].first;
+      out.secondTriangle = partners[t].front();
     }
-    out.count += results[t].count;
+    out.count += static_cast<int>(partners[t].size());
   }
+  return out;
+}
+
+std::vector<std::pair<int, int>> selfIntersectingPairs(const Eigen::VectorXd& positions,
+                                                       const Eigen::MatrixX3i& triangles,
+                                                       const std::vector<std::pair<int, int>>& joined) {
+  std::vector<std::pair<int, int>> out;
+  const std::vector<std::vector<int>> partners = crossingPartners(positions, triangles, joined);
+  for (int t = 0; t < static_cast<int>(partners.size()); ++t)
+    for (int u : partners[t]) out.emplace_back(t, u);
   return out;
 }
 

@@ -12,6 +12,7 @@ QualitySettings qualitySettingsFrom(const Settings& settings) {
   s.nearSkinDistance = settings.number("quality.near_skin_distance");
   s.maxNearSkinFraction = settings.number("quality.max_near_skin_fraction");
   s.maxSelfIntersections = settings.integer("quality.max_self_intersections");
+  s.maxSeamGap = settings.number("quality.max_seam_gap");
   s.minOutwardFraction = settings.number("quality.min_outward_fraction");
   s.requireRest = settings.flag("quality.require_rest");
   return s;

@@ -84,7 +84,7 @@ const std::vector<SettingSpec>& Settings::specs() {
           {"contact.avatar_features", T::Boolean, "true", "",
                "the avatar's sharp points (radius of curvature below mean garment edge^2 / (4 thickness)) push the garment's "
                "triangles, not only its vertices (Newton drape)"},
-          {"contact.self_collision", T::Boolean, "false", "", "cloth-cloth contact (builds the self-collision BVH)"},
+          {"contact.self_collision", T::Boolean, "true", "", "cloth-cloth contact: the cloth keeps off itself and crossings are pulled free"},
       }),
       section(G::Run, {
           {"solver.stage", T::Choice, "drape", "", "what --simulate runs: none (placed garment), preview (the drape's model by L-BFGS), drape "
@@ -182,8 +182,10 @@ const std::vector<SettingSpec>& Settings::specs() {
                "a garment vertex nearer than this to a collider's surface, or inside, counts as near the skin", 0, 0.1},
           {"quality.max_near_skin_fraction", T::Number, "0.01", "",
                "largest fraction of garment vertices near the skin (quality.near_skin_distance) that passes", 0, 1},
-          {"quality.max_self_intersections", T::Integer, "100", "",
+          {"quality.max_self_intersections", T::Integer, "0", "",
                "largest number of crossing pairs of garment triangles (sharing no vertex, seams sewn) that passes", 0, 1e9},
+          {"quality.max_seam_gap", T::Number, "0.003", "m",
+               "largest distance at rest between two sewn points of a seam that passes (a seam left open)", 0, 1},
           {"quality.min_outward_fraction", T::Number, "0.98", "",
                "smallest fraction of the garment faces on a collider (within 1 cm) facing away from it that passes", 0, 1},
           {"quality.require_rest", T::Boolean, "true", "", "the run must end at rest (not at the time or step limit)"},

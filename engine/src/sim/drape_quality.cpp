@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "drape/collision/avatar_collider.h"
@@ -130,6 +131,43 @@ QualityCheck selfIntersectionCheck(const Garment& garment, const Eigen::MatrixX3
   return c;
 }
 
+// The largest distance between two sewn points: a vertex and its partner across a seam, or a vertex and the point of
+// the other side's edge it is sewn to (non-conforming seams).
+QualityCheck seamGapCheck(const Garment& garment, const Eigen::MatrixX3d& x, const QualitySettings& s) {
+  QualityCheck c;
+  c.name = "seam_gap";
+  c.threshold = s.maxSeamGap;
+  int seam = -1, partner = -1;
+  const auto consider = [&](int seamIndex, int v, int w, const Eigen::Vector3d& other) {
+    const double gap = (x.row(v).transpose() - other).norm();
+    if (c.vertex < 0 || gap > c.value || std::isnan(gap)) {
+      c.value = gap;
+      c.vertex = v;
+      seam = seamIndex;
+      partner = w;
+    }
+  };
+  for (const GarmentStitch& st : garment.stitches) {
+    for (int i = st.firstPair; i < st.firstPair + st.pairCount; ++i) {
+      const auto [v, w] = garment.stitchPairs[i];
+      consider(st.stitch, v, w, x.row(w).transpose());
+    }
+    for (int i = st.firstEdgeStitch; i < st.firstEdgeStitch + st.edgeStitchCount; ++i) {
+      const GarmentEdgeStitch& e = garment.edgeStitches[i];
+      const Eigen::Vector3d point = (1.0 - e.t) * x.row(e.a).transpose() + e.t * x.row(e.b).transpose();
+      consider(st.stitch, e.vertex, e.t <= 0.5 ? e.a : e.b, point);
+    }
+  }
+  c.passed = !(c.value > c.threshold);
+  if (c.vertex >= 0)
+    c.where = "seam " + std::to_string(seam) + ": " + vertexPlace(garment, x, c.vertex) + ", sewn to vertex " +
+              std::to_string(partner) + panelOf(garment, garment.vertexPanel(partner));
+  c.message = format("seam_gap: two sewn points %.1f mm apart (threshold %.1f mm), ", 1e3 * c.value,
+                     1e3 * c.threshold) +
+              (c.where.empty() ? std::string("no seams") : c.where);
+  return c;
+}
+
 QualityCheck restCheck(const std::string& endStatus, const QualitySettings& s) {
   QualityCheck c;
   c.name = "at_rest";
@@ -161,6 +199,7 @@ QualityReport checkDrapeQuality(const Garment& garment, const Eigen::MatrixX3d& 
     report.checks.push_back(outwardCheck(garment, positions, *collider, settings));
   }
   report.checks.push_back(selfIntersectionCheck(garment, positions, settings));
+  report.checks.push_back(seamGapCheck(garment, positions, settings));
   report.checks.push_back(restCheck(endStatus, settings));
   for (const QualityCheck& c : report.checks) report.passed = report.passed && c.passed;
   return report;

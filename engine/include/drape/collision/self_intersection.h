@@ -25,4 +25,9 @@ struct SelfIntersections {
 SelfIntersections countSelfIntersections(const Eigen::MatrixX3d& positions, const Eigen::MatrixX3i& triangles,
                                          const std::vector<std::pair<int, int>>& joined = {});
 
+// The same pairs listed: (t, u) with t < u, sorted. positions: flat, size 3|V| (x, y, z of each vertex).
+std::vector<std::pair<int, int>> selfIntersectingPairs(const Eigen::VectorXd& positions,
+                                                       const Eigen::MatrixX3i& triangles,
+                                                       const std::vector<std::pair<int, int>>& joined = {});
+
 }  // namespace drape::collision

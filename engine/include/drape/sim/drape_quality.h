@@ -21,12 +21,13 @@ class AvatarCollider;
 
 
 struct QualityCheck {
-  // max_strain, inside_fraction, penetration_depth, near_skin_fraction, outward_faces, self_intersections, at_rest
+  // max_strain, inside_fraction, penetration_depth, near_skin_fraction, outward_faces, self_intersections, seam_gap,
+  // at_rest
   std::string name;
   double value = 0.0;      // measured; at_rest: 1 at rest, 0 not
   double threshold = 0.0;  // the largest value that passes; at_rest, outward_faces: the smallest
   bool passed = true;
-  int vertex = -1;         // the garment vertex where it is worst (penetration, near skin), -1: none
+  int vertex = -1;         // the garment vertex where it is worst (penetration, near skin, seam gap), -1: none
   int triangle = -1;       // the garment triangle where it is worst (strain, the first crossing pair), -1: none
   int otherTriangle = -1;  // self_intersections: the triangle the first one crosses
   std::string where;       // the place in words: "triangle 12 of panel 'front' at (x, y, z) m"; empty: nowhere

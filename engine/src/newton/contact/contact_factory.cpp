@@ -2,6 +2,7 @@
 #include "drape/newton/contact/contact_factory.h"
 
 #include "drape/newton/contact/avatar_feature_contact.h"
+#include "drape/newton/contact/intersection_contour.h"
 #include "drape/newton/contact/self_contact.h"
 
 namespace drape::newton {
@@ -35,6 +36,9 @@ std::vector<std::unique_ptr<Energy>> makeContactEnergies(const ContactSetup& set
                                                  setup.selfContact, setup.selfMargin);
     self = e.get();
     out.push_back(std::move(e));
+    // Pulled as hard as the contact pushes at its full thickness.
+    out.push_back(std::make_unique<IntersectionContourEnergy>(
+        self, setup.selfContact.stiffness * setup.selfContact.thickness));
   }
   if (setup.frictionCoefficient > 0.0 && (avatar || self)) {
     const FrictionParameters friction{setup.frictionCoefficient, setup.frictionEpsV, setup.frictionMajorizer};

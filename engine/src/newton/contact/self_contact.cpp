@@ -4,7 +4,10 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
+
+#include "drape/collision/self_intersection.h"
 
 namespace drape::newton {
 
@@ -13,11 +16,27 @@ SelfContactEnergy::SelfContactEnergy(const Eigen::MatrixX3i& triangles, int vert
                                      double margin)
     : m_params(params),
       m_margin(margin > 0.0 ? margin : params.thickness),
-      m_proximity(triangles, vertexCount, mergedVertices) {}
+      m_proximity(triangles, vertexCount, mergedVertices),
+      m_merged(mergedVertices),
+      m_excluded(vertexCount, 0) {}
+
+int SelfContactEnergy::excludedCount() const {
+  std::lock_guard lock(m_mutex);
+  return static_cast<int>(std::count(m_excluded.begin(), m_excluded.end(), 1));
+}
 
 void SelfContactEnergy::beginStep(const StepContext& ctx) {
   std::lock_guard lock(m_mutex);
   m_reference.resize(0);
+  std::fill(m_excluded.begin(), m_excluded.end(), 0);
+  const auto& tris = m_proximity.triangles();
+  m_crossings = collision::selfIntersectingPairs(*ctx.previousPositions, tris, m_merged);
+  for (const auto& [t, u] : m_crossings) {
+    for (int k = 0; k < 3; ++k) {
+      m_excluded[tris(t, k)] = 1;
+      m_excluded[tris(u, k)] = 1;
+    }
+  }
   ensureCandidates(*ctx.previousPositions);
 }
 
@@ -31,6 +50,16 @@ void SelfContactEnergy::ensureCandidates(const Eigen::VectorXd& x) const {
     if (2.0 * std::sqrt(maxMove2) <= m_margin) return;
   }
   m_proximity.findPairs(x, m_params.thickness + m_margin, m_vertexTriangle, m_edgeEdge);
+  const auto& tris = m_proximity.triangles();
+  const auto& edges = m_proximity.edges();
+  std::erase_if(m_vertexTriangle, [&](const collision::VertexTrianglePair& p) {
+    return m_excluded[p.vertex] || m_excluded[tris(p.triangle, 0)] || m_excluded[tris(p.triangle, 1)] ||
+           m_excluded[tris(p.triangle, 2)];
+  });
+  std::erase_if(m_edgeEdge, [&](const collision::EdgeEdgePair& p) {
+    return m_excluded[edges(p.first, 0)] || m_excluded[edges(p.first, 1)] || m_excluded[edges(p.second, 0)] ||
+           m_excluded[edges(p.second, 1)];
+  });
   m_reference = x;
   ++m_queries;
 }

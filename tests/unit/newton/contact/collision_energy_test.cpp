@@ -342,22 +342,24 @@ TEST(CollisionEnergyTest, FactoryCreatesOnlyNeededTerms) {
   EXPECT_TRUE(makeContactEnergies(setup, 9, layers.triangles, {}).empty());
   setup.selfCollision = true;
   auto energies = makeContactEnergies(setup, 9, layers.triangles, {});
-  ASSERT_EQ(energies.size(), 1u);
+  ASSERT_EQ(energies.size(), 2u);
   EXPECT_EQ(energies[0]->name(), "self_contact");
+  EXPECT_EQ(energies[1]->name(), "intersection_contour");
   setup.avatar = std::make_shared<AvatarCollider>(makeBox(Eigen::Vector3d(-1, -1, -2), Eigen::Vector3d(1, 1, -1)));
   setup.frictionCoefficient = 0.3;
   energies = makeContactEnergies(setup, 9, layers.triangles, {});
-  ASSERT_EQ(energies.size(), 3u);
+  ASSERT_EQ(energies.size(), 4u);
   EXPECT_EQ(energies[0]->name(), "avatar_contact");
   EXPECT_EQ(energies[1]->name(), "self_contact");
-  EXPECT_EQ(energies[2]->name(), "friction");
+  EXPECT_EQ(energies[2]->name(), "intersection_contour");
+  EXPECT_EQ(energies[3]->name(), "friction");
   // Friction picks up the self contacts lagged at x_n.
   newton::StepContext ctx;
   ctx.previousPositions = &layers.x;
   for (auto& e : energies) e->beginStep(ctx);
-  EXPECT_GE(static_cast<const FrictionEnergy&>(*energies[2]).laggedContacts().size(), 3u);
+  EXPECT_GE(static_cast<const FrictionEnergy&>(*energies[3]).laggedContacts().size(), 3u);
   setup.frictionCoefficient = 0.0;
-  EXPECT_EQ(makeContactEnergies(setup, 9, layers.triangles, {}).size(), 2u);
+  EXPECT_EQ(makeContactEnergies(setup, 9, layers.triangles, {}).size(), 3u);
 }
 
 }  // namespace

@@ -142,8 +142,8 @@ TEST(SelfCollisionEdgeStitch, NewtonSelfContactExcludesTheClosedSeam) {
   const int nv = m.numVertices();
   auto with = newton::makeContactEnergies(selfOnly(), nv, m.triangles, {}, m.edgeStitches);
   auto without = newton::makeContactEnergies(selfOnly(), nv, m.triangles, {});
-  ASSERT_EQ(with.size(), 1u);
-  ASSERT_EQ(without.size(), 1u);
+  ASSERT_EQ(with.size(), 2u);  // self_contact, intersection_contour
+  ASSERT_EQ(without.size(), 2u);
   const auto* selfWith = dynamic_cast<const newton::SelfContactEnergy*>(with[0].get());
   const auto* selfWithout = dynamic_cast<const newton::SelfContactEnergy*>(without[0].get());
   ASSERT_TRUE(selfWith && selfWithout);

@@ -2,7 +2,8 @@
 // Builds only the contact terms a scene needs (DESIGN.md section 1): no avatar -> no avatar contact and no
 // collider; self-collision off -> no cloth-cloth BVH; friction coefficient 0 -> no friction energy; an avatar
 // without features sharper than featureRadius -> no feature contact. The energies come back in the order the
-// solver should call beginStep in, named "avatar_contact", "avatar_feature_contact", "self_contact", "friction".
+// solver should call beginStep in, named "avatar_contact", "avatar_feature_contact", "self_contact",
+// "intersection_contour" (with self contact: it pulls crossings free, intersection_contour.h), "friction".
 #include <Eigen/Core>
 #include <memory>
 #include <utility>

@@ -5,6 +5,9 @@
 // Exact for every x: candidate pairs are gathered through the BVH within thickness + margin around reference
 // positions x_ref; as long as no vertex has moved more than margin / 2 from x_ref no other pair can be within
 // the thickness, so evaluations only loop over candidates. A larger move triggers a new BVH query around x.
+// A penalty cannot tell the two sides of a crossing apart: where the cloth already passes through itself it would
+// hold the tangle in place. So at the start of every step the triangles that cross another are found, and their
+// vertices take no part in this term during the step: the cloth's own forces pull such a tangle free.
 #include <Eigen/Core>
 #include <mutex>
 #include <utility>
@@ -39,6 +42,13 @@ class SelfContactEnergy : public Energy {
   // Candidate pairs currently held (vertex-triangle + edge-edge) and number of BVH queries so far.
   int candidateCount() const { return static_cast<int>(m_vertexTriangle.size() + m_edgeEdge.size()); }
   int queryCount() const { return m_queries; }
+  // Vertices of the triangles that crossed another at the start of the step (excluded from the term).
+  int excludedCount() const;
+  // The pairs of triangles (t < u) that crossed at the start of the step; the garment's triangles; the representative
+  // of a vertex's stitched group (triangles sharing one are neighbours).
+  const std::vector<std::pair<int, int>>& crossings() const { return m_crossings; }
+  const Eigen::MatrixX3i& triangles() const { return m_proximity.triangles(); }
+  int canonical(int v) const { return m_proximity.canonical(v); }
   const ContactParameters& parameters() const { return m_params; }
 
  private:
@@ -57,6 +67,9 @@ class SelfContactEnergy : public Energy {
   double m_margin = 0.0;
   mutable std::mutex m_mutex;
   mutable collision::SelfProximity m_proximity;
+  std::vector<std::pair<int, int>> m_merged;  // stitched vertex pairs, one vertex for crossings too
+  std::vector<std::pair<int, int>> m_crossings;  // triangle pairs crossing at the start of the step
+  std::vector<char> m_excluded;                  // per vertex: on a crossing triangle at the start of the step
   mutable Eigen::VectorXd m_reference;  // positions the candidates were gathered at
   mutable std::vector<collision::VertexTrianglePair> m_vertexTriangle;
   mutable std::vector<collision::EdgeEdgePair> m_edgeEdge;

@@ -1,0 +1,51 @@
+#pragma once
+// Untangling: where the cloth already passes through itself, a pull that shortens the intersection contour, the
+// closed curve along which the crossing triangles cut each other (the contour minimisation of Volino and
+// Magnenat-Thalmann 2006). The energy is
+//   E(x) = f * sum over crossing triangle pairs (t, u) of |P_tu(x) - Q_tu(x)|,
+// the length of the segment along which t and u cross, times a force f (newtons): the contour shrinks, and the
+// crossing with it, as a loop of string under tension f would. A contour length has no useful curvature, so the term
+// adds its gradient and no Hessian: the step sees it as a force.
+// The crossings come from the self-contact term (self_contact.h), found at the start of each step; the pairs
+// evaluated are every pair of triangles near them (a few rings around), so that a contour that moves on during the
+// step is still followed, and a garment without crossings costs nothing here.
+#include <Eigen/Core>
+#include <utility>
+#include <vector>
+
+#include "drape/newton/contact/self_contact.h"
+#include "drape/newton/energy.h"
+
+namespace drape::newton {
+
+// Length of the segment along which triangles (a0, a1, a2) and (b0, b1, b2) cross, 0 when they do not cross (or
+// only touch). gradient (optional): d length / d (a0, a1, a2, b0, b1, b2).
+double crossingLength(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& a2,
+                      const Eigen::Vector3d& b0, const Eigen::Vector3d& b1, const Eigen::Vector3d& b2,
+                      Eigen::Matrix<double, 18, 1>* gradient = nullptr);
+
+class IntersectionContourEnergy : public Energy {
+ public:
+  // self: the cloth's self contact, which finds the crossings at the start of each step (beginStep after its own).
+  // force: the contour's tension, newtons.
+  IntersectionContourEnergy(const SelfContactEnergy* self, double force);
+
+  std::string_view name() const override { return "intersection_contour"; }
+  void beginStep(const StepContext& ctx) override;
+  double value(const Eigen::VectorXd& x) const override;
+  void addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
+  void addHessian(const Eigen::VectorXd& x, BlockMatrix& h) const override {
+    (void)x;
+    (void)h;
+  }
+
+  // Triangle pairs followed during this step (none while the cloth crosses nowhere).
+  int candidateCount() const { return static_cast<int>(m_candidates.size()); }
+
+ private:
+  const SelfContactEnergy* m_self;
+  double m_force;
+  std::vector<std::pair<int, int>> m_candidates;
+};
+
+}  // namespace drape::newton
