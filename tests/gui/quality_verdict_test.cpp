@@ -38,8 +38,8 @@ TEST(QualityVerdict, FinishedDrapeShowsTheVerdictInTheStatisticsDockAndTheLog) {
     EXPECT_FALSE(panel->qualityCell(row, 1).isEmpty());
     EXPECT_FALSE(panel->qualityCell(row, 2).isEmpty());
   }
-  EXPECT_EQ(panel->qualityCell(6, 1), "no");
-  EXPECT_EQ(panel->qualityCell(6, 2), "yes");
+  EXPECT_EQ(panel->qualityCell(7, 1), "no");  // at_rest
+  EXPECT_EQ(panel->qualityCell(7, 2), "yes");
   EXPECT_TRUE(panel->qualityVerdict().startsWith("failed")) << panel->qualityVerdict().toStdString();
   // The stretch shown is the finished garment's.
   const auto snapshot = window->currentSnapshot();

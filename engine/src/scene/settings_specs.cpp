@@ -84,7 +84,7 @@ const std::vector<SettingSpec>& Settings::specs() {
           {"contact.avatar_features", T::Boolean, "true", "",
                "the avatar's sharp points (radius of curvature below mean garment edge^2 / (4 thickness)) push the garment's "
                "triangles, not only its vertices (Newton drape)"},
-          {"contact.self_collision", T::Boolean, "true", "", "cloth-cloth contact: the cloth keeps off itself and crossings are pulled free"},
+          {"contact.self_collision", T::Boolean, "false", "", "cloth-cloth contact: the cloth keeps off itself and crossings are pulled free"},
       }),
       section(G::Run, {
           {"solver.stage", T::Choice, "drape", "", "what --simulate runs: none (placed garment), preview (the drape's model by L-BFGS), drape "

@@ -1,7 +1,7 @@
 // Crossings are pulled free (newton/contact/intersection_contour.h). The library t-shirt's seams draw its right sleeve
 // through the front panel under the arm within its first few milliseconds. The preview, from the placed garment,
 // has cleared that crossing 0.2 simulated seconds later; the drape, started from the tangled state itself (the drape
-// without self-contact after 5 ms), too. Both keep the seams closed.
+// without self-contact after 5 ms), too. Both keep the seams closed. Self-contact on, as a scene turns it on.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -28,7 +28,8 @@ Eigen::MatrixX3d tangledShirt() {
 }
 
 void untanglesWithin(const char* stage, const Eigen::MatrixX3d& tangled) {
-  Scene scene = test::libraryScene("default.json", {{"solver.stage", stage}, {"solver.max_sim_time", "0.2"}});
+  Scene scene = test::libraryScene(
+      "default.json", {{"contact.self_collision", "true"}, {"solver.stage", stage}, {"solver.max_sim_time", "0.2"}});
   const StagePlan plan = simulationSettingsFrom(scene).plan;
   Simulation sim(std::move(scene), startStateAt(plan, tangled));
   const double placed = check(sim, "self_intersections");
@@ -43,7 +44,8 @@ void untanglesWithin(const char* stage, const Eigen::MatrixX3d& tangled) {
 }
 
 TEST(Untangle, ThePreviewPullsASleeveOutOfTheFrontPanel) {
-  Simulation sim(test::libraryScene("default.json", {{"solver.stage", "preview"}, {"solver.max_sim_time", "0.2"}}));
+  Simulation sim(test::libraryScene(
+      "default.json", {{"contact.self_collision", "true"}, {"solver.stage", "preview"}, {"solver.max_sim_time", "0.2"}}));
   double worst = 0.0;
   while (!sim.finished()) {
     ASSERT_NE(sim.step().status, StepStatus::Diverged);

@@ -33,7 +33,7 @@ struct ContactSettings {
   double stiffness = 1e3;         // N/m, penalty of avatar and cloth contact
   double thickness = 2e-3;        // m (contact.thickness, else the thickest fabric, at least 2 mm)
   bool avatarFeatures = true;     // the avatar's sharp points push garment triangles
-  bool selfCollision = true;      // cloth-cloth contact (self_contact, intersection_contour)
+  bool selfCollision = false;     // cloth-cloth contact (self_contact, intersection_contour)
   bool friction = true;           // Coulomb friction (where a fabric's coefficient is above 0)
   bool frictionMajorizer = true;  // a step's first Newton iteration takes friction's isotropic majorizer
 };
