@@ -162,9 +162,9 @@ QualityCheck seamGapCheck(const Garment& garment, const Eigen::MatrixX3d& x, con
   if (c.vertex >= 0)
     c.where = "seam " + std::to_string(seam) + ": " + vertexPlace(garment, x, c.vertex) + ", sewn to vertex " +
               std::to_string(partner) + panelOf(garment, garment.vertexPanel(partner));
-  c.message = format("seam_gap: two sewn points %.1f mm apart (threshold %.1f mm), ", 1e3 * c.value,
-                     1e3 * c.threshold) +
-              (c.where.empty() ? std::string("no seams") : c.where);
+  c.message =
+      format("seam_gap: two sewn points %.1f mm apart (threshold %.1f mm), ", 1e3 * c.value, 1e3 * c.threshold) +
+      (c.where.empty() ? std::string("no seams") : c.where);
   return c;
 }
 

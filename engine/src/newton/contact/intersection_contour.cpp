@@ -4,9 +4,9 @@
 
 #include <tbb/parallel_for.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
-#include <Eigen/Geometry>
 #include <unsupported/Eigen/AutoDiff>
 
 #include "drape/collision/aabb.h"

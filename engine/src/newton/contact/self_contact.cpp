@@ -20,14 +20,9 @@ SelfContactEnergy::SelfContactEnergy(const Eigen::MatrixX3i& triangles, int vert
       m_merged(mergedVertices),
       m_excluded(vertexCount, 0) {}
 
-int SelfContactEnergy::excludedCount() const {
-  std::lock_guard lock(m_mutex);
-  return static_cast<int>(std::count(m_excluded.begin(), m_excluded.end(), 1));
-}
-
 void SelfContactEnergy::beginStep(const StepContext& ctx) {
   std::lock_guard lock(m_mutex);
-  m_reference.resize(0);
+  m_gathered = false;
   std::fill(m_excluded.begin(), m_excluded.end(), 0);
   const auto& tris = m_proximity.triangles();
   m_crossings = collision::selfIntersectingPairs(*ctx.previousPositions, tris, m_merged);
@@ -41,14 +36,7 @@ void SelfContactEnergy::beginStep(const StepContext& ctx) {
 }
 
 void SelfContactEnergy::ensureCandidates(const Eigen::VectorXd& x) const {
-  if (m_reference.size() == x.size()) {
-    const Eigen::VectorXd diff = x - m_reference;
-    double maxMove2 = 0.0;
-    for (Eigen::Index v = 0; v < diff.size() / 3; ++v)
-      maxMove2 = std::max(maxMove2, diff.segment<3>(3 * v).squaredNorm());
-    // Two primitives each moving at most margin/2 close a gap by at most margin.
-    if (2.0 * std::sqrt(maxMove2) <= m_margin) return;
-  }
+  if (m_gathered) return;
   m_proximity.findPairs(x, m_params.thickness + m_margin, m_vertexTriangle, m_edgeEdge);
   const auto& tris = m_proximity.triangles();
   const auto& edges = m_proximity.edges();
@@ -60,7 +48,7 @@ void SelfContactEnergy::ensureCandidates(const Eigen::VectorXd& x) const {
     return m_excluded[edges(p.first, 0)] || m_excluded[edges(p.first, 1)] || m_excluded[edges(p.second, 0)] ||
            m_excluded[edges(p.second, 1)];
   });
-  m_reference = x;
+  m_gathered = true;
   ++m_queries;
 }
 
@@ -79,12 +67,13 @@ std::vector<SelfContactEnergy::Evaluated> SelfContactEnergy::evaluate(const Eige
     if (k < vt) {
       const auto& p = m_vertexTriangle[k];
       e.vertices = {p.vertex, tris(p.triangle, 0), tris(p.triangle, 1), tris(p.triangle, 2)};
-      e.distance =
-          collision::pointTriangleSquaredDistance(at(e.vertices[0]), at(e.vertices[1]), at(e.vertices[2]), at(e.vertices[3]));
+      e.distance = collision::pointTriangleSquaredDistance(at(e.vertices[0]), at(e.vertices[1]), at(e.vertices[2]),
+                                                           at(e.vertices[3]));
     } else {
       const auto& p = m_edgeEdge[k - vt];
       e.vertices = {edges(p.first, 0), edges(p.first, 1), edges(p.second, 0), edges(p.second, 1)};
-      e.distance = collision::edgeEdgeSquaredDistance(at(e.vertices[0]), at(e.vertices[1]), at(e.vertices[2]), at(e.vertices[3]));
+      e.distance = collision::edgeEdgeSquaredDistance(at(e.vertices[0]), at(e.vertices[1]), at(e.vertices[2]),
+                                                      at(e.vertices[3]));
     }
     active[k] = penaltyFromSquaredDistance(e.distance, m_params.stiffness, m_params.thickness,
                                            withHessian && m_params.projectHessian, e.energy, e.gradient, e.hessian);

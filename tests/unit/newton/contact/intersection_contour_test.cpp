@@ -1,6 +1,8 @@
 // Untangling by the intersection contour (newton/contact/intersection_contour.h): the crossing segment of two
 // triangles against hand-computed cuts, its gradient against central differences, and a panel pushed through
 // another that comes back out once released, where the self-contact penalty alone would hold it through.
+#include "drape/newton/contact/intersection_contour.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -9,7 +11,6 @@
 
 #include "drape/collision/self_intersection.h"
 #include "drape/newton/contact/contact_factory.h"
-#include "drape/newton/contact/intersection_contour.h"
 #include "drape/newton/newton_solver.h"
 #include "newton_test_cloths.h"
 
@@ -52,8 +53,8 @@ TEST(IntersectionContour, GradientMatchesCentralDifferences) {
   int checked = 0;
   for (int trial = 0; trial < 200 && checked < 20; ++trial) {
     // A perturbed copy of A and a random upright triangle through it.
-    std::array<Vector3d, 6> p = {a0, a1, a2, Vector3d(0.3, 0.2, -0.4), Vector3d(0.5, 0.3, 0.5),
-                                 Vector3d(0.1, 0.4, 0.4)};
+    std::array<Vector3d, 6> p = {
+        a0, a1, a2, Vector3d(0.3, 0.2, -0.4), Vector3d(0.5, 0.3, 0.5), Vector3d(0.1, 0.4, 0.4)};
     for (Vector3d& q : p) q += Vector3d(u(rng), u(rng), u(rng));
     Eigen::Matrix<double, 18, 1> g;
     const double length = crossingLength(p[0], p[1], p[2], p[3], p[4], p[5], &g);
@@ -74,9 +75,9 @@ TEST(IntersectionContour, GradientMatchesCentralDifferences) {
   EXPECT_GE(checked, 10);
 }
 
-constexpr int kN = 9;           // vertices per side of each panel
-constexpr double kSide = 0.2;   // metres
-constexpr double kGap = 0.03;   // the upper panel hangs this far above the lower one
+constexpr int kN = 9;          // vertices per side of each panel
+constexpr double kSide = 0.2;  // metres
+constexpr double kGap = 0.03;  // the upper panel hangs this far above the lower one
 
 // Two parallel square panels, the upper one's middle pushed 2 cm through the lower one (a drag that went too
 // far), both held at their corners, no gravity: released, the upper panel's own stretch pulls it back up.

@@ -158,6 +158,9 @@ TEST(SelfCollisionEdgeStitch, NewtonSelfContactExcludesTheClosedSeam) {
   Eigen::VectorXd x = m.positions;
   const int fineInterior = kCoarse * kCoarse + 5 * kFineX + 4;  // middle of the fine panel
   x.segment<3>(3 * fineInterior) = Eigen::Vector3d(0.1, 0.1, 0.001);
+  newton::StepContext ctx;  // a step starting there gathers the pair
+  ctx.previousPositions = &x;
+  with[0]->beginStep(ctx);
   EXPECT_GT(selfWith->contacts(x).size(), 0u);
 }
 
