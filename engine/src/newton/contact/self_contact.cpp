@@ -22,7 +22,7 @@ SelfContactEnergy::SelfContactEnergy(const Eigen::MatrixX3i& triangles, int vert
 
 void SelfContactEnergy::beginStep(const StepContext& ctx) {
   std::lock_guard lock(m_mutex);
-  m_gathered = false;
+  m_reference.resize(0);
   std::fill(m_excluded.begin(), m_excluded.end(), 0);
   const auto& tris = m_proximity.triangles();
   m_crossings = collision::selfIntersectingPairs(*ctx.previousPositions, tris, m_merged);
@@ -36,7 +36,14 @@ void SelfContactEnergy::beginStep(const StepContext& ctx) {
 }
 
 void SelfContactEnergy::ensureCandidates(const Eigen::VectorXd& x) const {
-  if (m_gathered) return;
+  if (m_reference.size() == x.size()) {
+    const Eigen::VectorXd diff = x - m_reference;
+    double maxMove2 = 0.0;
+    for (Eigen::Index v = 0; v < diff.size() / 3; ++v)
+      maxMove2 = std::max(maxMove2, diff.segment<3>(3 * v).squaredNorm());
+    // Two primitives each moving at most margin/2 close a gap by at most margin.
+    if (2.0 * std::sqrt(maxMove2) <= m_margin) return;
+  }
   m_proximity.findPairs(x, m_params.thickness + m_margin, m_vertexTriangle, m_edgeEdge);
   const auto& tris = m_proximity.triangles();
   const auto& edges = m_proximity.edges();
@@ -48,7 +55,7 @@ void SelfContactEnergy::ensureCandidates(const Eigen::VectorXd& x) const {
     return m_excluded[edges(p.first, 0)] || m_excluded[edges(p.first, 1)] || m_excluded[edges(p.second, 0)] ||
            m_excluded[edges(p.second, 1)];
   });
-  m_gathered = true;
+  m_reference = x;
   ++m_queries;
 }
 

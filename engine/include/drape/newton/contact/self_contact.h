@@ -2,11 +2,9 @@
 // Cloth-cloth contact for the Newton drape (newton-drape-pizana 3.2-3.3): quadratic penalty on every
 // non-adjacent vertex-triangle and edge-edge pair closer than the thickness,
 //   E(x) = sum_pairs 0.5 k (thickness - d_pair(x))^2,  d_pair = unsigned distance between the closest points.
-// Candidate pairs are gathered through the BVH once a step, at its start x_n, within thickness + margin: like
-// friction's contact set, the pairs are lagged for the step and the energy is exact for them. A pair that closes by
-// more than the margin within one step joins at the next step (and a crossing it leaves is pulled free by the
-// intersection contour). A query at every iterate that moved far enough to admit another pair was the main cost of
-// self-contact (docs/BENCHMARKS.md, "Crossing-free garments").
+// Exact for every x: candidate pairs are gathered through the BVH within thickness + margin around reference
+// positions x_ref; as long as no vertex has moved more than margin / 2 from x_ref no other pair can be within
+// the thickness, so evaluations only loop over candidates. A larger move triggers a new BVH query around x.
 // A penalty cannot tell the two sides of a crossing apart: where the cloth already passes through itself it would
 // hold the tangle in place. So at the start of every step the triangles that cross another are found, and their
 // vertices take no part in this term during the step: the cloth's own forces pull such a tangle free.
@@ -70,7 +68,7 @@ class SelfContactEnergy : public Energy {
   std::vector<std::pair<int, int>> m_merged;     // stitched vertex pairs, one vertex for crossings too
   std::vector<std::pair<int, int>> m_crossings;  // triangle pairs crossing at the start of the step
   std::vector<char> m_excluded;                  // per vertex: on a crossing triangle at the start of the step
-  mutable bool m_gathered = false;  // candidates gathered for this step (before any step: at the first x evaluated)
+  mutable Eigen::VectorXd m_reference;           // positions the candidates were gathered at
   mutable std::vector<collision::VertexTrianglePair> m_vertexTriangle;
   mutable std::vector<collision::EdgeEdgePair> m_edgeEdge;
   mutable int m_queries = 0;
