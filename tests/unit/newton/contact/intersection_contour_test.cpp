@@ -79,9 +79,9 @@ constexpr int kN = 9;          // vertices per side of each panel
 constexpr double kSide = 0.2;  // metres
 constexpr double kGap = 0.03;  // the upper panel hangs this far above the lower one
 
-// Two parallel square panels, the upper one's middle pushed 2 cm through the lower one (a drag that went too
-// far), both held at their corners, no gravity: released, the upper panel's own stretch pulls it back up.
-model::ClothModel pushedThrough() {
+// Two square jersey panels (kN x kN vertices, kSide wide) in the plane z = 0, the second one offset by `offset`; no
+// gravity.
+model::ClothModel twoPanels(const Vector3d& offset) {
   model::ClothModel m;
   model::TriangleFabric jersey;
   jersey.stretchWarp = jersey.stretchWeft = 500.0;
@@ -89,7 +89,14 @@ model::ClothModel pushedThrough() {
   m.fabrics = {jersey};
   m.gravity.setZero();
   newton::appendGridPanel(m, kN, kN, kSide, kSide, Vector3d(0, 0, 0));
-  newton::appendGridPanel(m, kN, kN, kSide, kSide, Vector3d(0, 0, kGap));
+  newton::appendGridPanel(m, kN, kN, kSide, kSide, offset);
+  return m;
+}
+
+// Two parallel square panels, the upper one's middle pushed 2 cm through the lower one (a drag that went too
+// far), both held at their corners: released, the upper panel's own stretch pulls it back up.
+model::ClothModel pushedThrough() {
+  model::ClothModel m = twoPanels(Vector3d(0, 0, kGap));
   const int base = kN * kN;
   for (int j = 0; j < kN; ++j)
     for (int i = 0; i < kN; ++i) {
@@ -101,57 +108,10 @@ model::ClothModel pushedThrough() {
   return m;
 }
 
-Eigen::MatrixX3d rows(const Eigen::VectorXd& x) {
-  Eigen::MatrixX3d out(x.size() / 3, 3);
-  for (Eigen::Index v = 0; v < out.rows(); ++v) out.row(v) = x.segment<3>(3 * v).transpose();
-  return out;
-}
-
-// Crossing pairs after 0.2 s with the drape's contact terms (self contact at 2 mm and 1000 N/m, contour pull).
-// above: how far the upper panel's centre ends above the lower panel's centre, metres.
-int crossingsAfterRelease(const model::ClothModel& m, double& above) {
-  newton::ContactSetup setup;
-  setup.selfCollision = true;
-  setup.selfContact.thickness = 0.002;
-  setup.selfContact.stiffness = 1000.0;
-  newton::NewtonSolver solver(m, newton::NewtonSettings{},
-                              newton::makeContactEnergies(setup, m.numVertices(), m.triangles, {}));
-  while (solver.time() < 0.2) {
-    const auto status = solver.step().status;
-    EXPECT_NE(status, newton::NewtonStatus::Diverged) << "t = " << solver.time();
-    if (status == newton::NewtonStatus::Diverged) break;
-  }
-  const Eigen::VectorXd x = solver.positions();
-  const int centre = (kN * kN) / 2;
-  above = x(3 * (kN * kN + centre) + 2) - x(3 * centre + 2);
-  return collision::countSelfIntersections(rows(x), m.triangles).count;
-}
-
-TEST(IntersectionContour, APanelPushedThroughAnotherComesBackOut) {
-  const model::ClothModel m = pushedThrough();
-  const int before = collision::countSelfIntersections(rows(m.positions), m.triangles).count;
-  const int centre = (kN * kN) / 2;
-  EXPECT_LT(m.positions(3 * (kN * kN + centre) + 2), m.positions(3 * centre + 2));  // placed through
-  double above = 0.0;
-  const int after = crossingsAfterRelease(m, above);
-  std::printf("panel pushed through: %d crossing pairs placed, %d after 0.2 s; its centre %.1f mm above the other's\n",
-              before, after, 1e3 * above);
-  EXPECT_GT(before, 10);
-  EXPECT_EQ(after, 0);
-  EXPECT_GT(above, 0.0);  // back on its own side
-}
-
-// Two free panels, no gravity, each at its rest shape: A flat in z = 0, B upright in the plane x + y = 0.35, cutting
-// off A's corner at (0.2, 0.2) along a 7 cm chord. Nothing but the contour pulls: it slides B off the corner.
+// Two free panels, each at its rest shape: A flat in z = 0, B upright in the plane x + y = 0.35, cutting off A's
+// corner at (0.2, 0.2) along a 7 cm chord. Nothing but the contour pulls: it slides B off the corner.
 model::ClothModel cornerCut() {
-  model::ClothModel m;
-  model::TriangleFabric jersey;
-  jersey.stretchWarp = jersey.stretchWeft = 500.0;
-  jersey.shear = 50.0;
-  m.fabrics = {jersey};
-  m.gravity.setZero();
-  newton::appendGridPanel(m, kN, kN, kSide, kSide, Vector3d(0, 0, 0));
-  newton::appendGridPanel(m, kN, kN, kSide, kSide, Vector3d(0, 0, 0));
+  model::ClothModel m = twoPanels(Vector3d::Zero());
   const Vector3d centre(0.175, 0.175, 0.0), along = Vector3d(1, -1, 0).normalized(), up(0, 0, 1);
   for (int v = kN * kN; v < m.numVertices(); ++v) {
     const Eigen::Vector2d r = m.restCoords.row(v).transpose();
@@ -160,7 +120,19 @@ model::ClothModel cornerCut() {
   return m;
 }
 
-int crossingsAfter(const model::ClothModel& m, bool withContour) {
+Eigen::MatrixX3d rows(const Eigen::VectorXd& x) {
+  Eigen::MatrixX3d out(x.size() / 3, 3);
+  for (Eigen::Index v = 0; v < out.rows(); ++v) out.row(v) = x.segment<3>(3 * v).transpose();
+  return out;
+}
+
+int crossings(const model::ClothModel& m, const Eigen::VectorXd& x) {
+  return collision::countSelfIntersections(rows(x), m.triangles).count;
+}
+
+// Positions after 0.2 s with the drape's contact terms: self contact at 2 mm and 1000 N/m, and the contour pull
+// unless withContour is false.
+Eigen::VectorXd released(const model::ClothModel& m, bool withContour = true) {
   newton::ContactSetup setup;
   setup.selfCollision = true;
   setup.selfContact.thickness = 0.002;
@@ -176,14 +148,29 @@ int crossingsAfter(const model::ClothModel& m, bool withContour) {
     EXPECT_NE(status, newton::NewtonStatus::Diverged) << "t = " << solver.time();
     if (status == newton::NewtonStatus::Diverged) break;
   }
-  return collision::countSelfIntersections(rows(solver.positions()), m.triangles).count;
+  return solver.positions();
+}
+
+TEST(IntersectionContour, APanelPushedThroughAnotherComesBackOut) {
+  const model::ClothModel m = pushedThrough();
+  const int centre = (kN * kN) / 2;
+  // How far the upper panel's centre lies above the lower panel's centre, metres.
+  const auto above = [&](const Eigen::VectorXd& x) { return x(3 * (kN * kN + centre) + 2) - x(3 * centre + 2); };
+  EXPECT_LT(above(m.positions), 0.0);  // placed through
+  const Eigen::VectorXd x = released(m);
+  const int before = crossings(m, m.positions), after = crossings(m, x);
+  std::printf("panel pushed through: %d crossing pairs placed, %d after 0.2 s; its centre %.1f mm above the other's\n",
+              before, after, 1e3 * above(x));
+  EXPECT_GT(before, 10);
+  EXPECT_EQ(after, 0);
+  EXPECT_GT(above(x), 0.0);  // back on its own side
 }
 
 TEST(IntersectionContour, TheContourAloneSlidesACrossingPanelOff) {
   const model::ClothModel m = cornerCut();
-  const int before = collision::countSelfIntersections(rows(m.positions), m.triangles).count;
-  const int withContour = crossingsAfter(m, true);
-  const int penaltyOnly = crossingsAfter(m, false);
+  const int before = crossings(m, m.positions);
+  const int withContour = crossings(m, released(m));
+  const int penaltyOnly = crossings(m, released(m, false));
   std::printf("corner cut: %d crossing pairs placed; after 0.2 s %d with the contour, %d with the penalty alone\n",
               before, withContour, penaltyOnly);
   EXPECT_GT(before, 0);
