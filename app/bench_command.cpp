@@ -20,6 +20,7 @@
 #include "drape/scene/settings.h"
 #include "drape/trade/pareto.h"
 #include "drape/trade/trade_run.h"
+#include "profile_json.h"
 #include "trade_report.h"
 
 namespace drape::app {
@@ -132,7 +133,8 @@ nlohmann::json runRow(const TradeOutcome& r, const trade::Distances& d) {
           {"max_strain", r.maxStrain},
           {"inside_vertices", r.insideVertices},
           {"vertices", r.garment.vertexCount()},
-          {"terms", r.terms}};
+          {"terms", r.terms},
+          {"profile", profileJson(r.profile)}};
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "drape/sim/scene_garment.h"
 #include "drape/sim/simulation.h"
 #include "drape/sim/snapshot_builder.h"
+#include "profile_json.h"
 #include "quality_output.h"
 #include "scene_request.h"
 #include "start_state.h"
@@ -34,6 +35,10 @@ nlohmann::json stepRecord(const StepReport& r) {
                       {"feature_contacts", r.featureContacts},
                       {"max_strain", r.maxStrain},
                       {"max_strain_triangle", r.maxStrainTriangle},
+                      {"force_rms", r.forceRms},
+                      {"force_max", r.forceMax},
+                      {"displacement_max_m", r.displacementMax},
+                      {"contact_query_time_s", r.contactQueryTime},
                       {"wall_time_s", r.wallTime}};
   if (r.quasiNewton) {  // the preview's L-BFGS steps: iterations are its iterations
     j["quasi_newton"] = true;
@@ -160,6 +165,7 @@ int runSimulate(const CliOptions& options, std::ostream& out) {
              {"triangles", simulation.garment().triangleCount()},
              {"pinned_vertices", simulation.pinned().size()},
              {"final", stepRecord(last)},
+             {"profile", profileJson(simulation.profile())},
              {"domains", domains}};
     if (!simulation.divergedReason().empty()) stats["diverged_reason"] = simulation.divergedReason();
     out << simulation.stage() << ": " << status << " after " << simulation.steps() << " steps, " << simulation.time()

@@ -47,8 +47,27 @@ TEST(CliSimulate, DrapeWritesGarmentAndPerStepStats) {
     EXPECT_GT(assembly, 0.0);
     EXPECT_GT(solve, 0.0);
     EXPECT_GE(gradient, 0.0);
-    EXPECT_LE(assembly + gradient + solve, s.at("wall_time_s").get<double>());
+    const double queries = s.at("contact_query_time_s");
+    EXPECT_GE(queries, 0.0);
+    EXPECT_LE(assembly + gradient + solve + queries, s.at("wall_time_s").get<double>());
+    // Equilibrium: the unbalanced force (largest at least the RMS) and the step's largest displacement.
+    EXPECT_GE(s.at("force_max").get<double>(), s.at("force_rms").get<double>());
+    EXPECT_GT(s.at("force_rms").get<double>(), 0.0);
+    EXPECT_GT(s.at("displacement_max_m").get<double>(), 0.0);
   }
+  // The profile: the phases sum over the steps and add up to their wall time.
+  const auto& profile = j.at("profile");
+  double phases = 0.0, assemblySum = 0.0, stepsWall = 0.0;
+  for (const char* phase : {"assembly_s", "linear_solve_s", "contact_queries_s", "line_search_s", "bookkeeping_s"})
+    phases += profile.at(phase).get<double>();
+  for (const auto& s : j.at("per_step")) {
+    assemblySum += s.at("assembly_time_s").get<double>();
+    stepsWall += s.at("wall_time_s").get<double>();
+  }
+  EXPECT_NEAR(profile.at("assembly_s").get<double>(), assemblySum, 1e-9 + 1e-9 * assemblySum);
+  EXPECT_NEAR(profile.at("steps_s").get<double>(), phases, 1e-9 + 1e-9 * phases);
+  EXPECT_NEAR(phases, stepsWall, 1e-6 + 1e-6 * stepsWall);
+  EXPECT_LE(stepsWall, j.at("wall_time_s").get<double>());
   // Hessian reuse (solver.newton.hessian_reuse_steps, default 4): some steps, never all (the first is fresh).
   EXPECT_GT(reused, 0);
   EXPECT_LT(reused, static_cast<int>(j.at("per_step").size()));

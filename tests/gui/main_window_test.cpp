@@ -66,6 +66,10 @@ TEST_F(MainWindowTest, DrapeActionRunsOnTheWorkerAndTheViewportFollows) {
   EXPECT_GT((draped->positions - placed->positions).rowwise().norm().maxCoeff(), 1e-6);
   EXPECT_TRUE(draped->positions.isApprox(window->viewport()->snapshot().positions));
   EXPECT_NE(window->statisticsPanel()->figure("iterations"), "-");
+  // Equilibrium: the unbalanced force and the last step's largest displacement.
+  EXPECT_NE(window->statisticsPanel()->figure("unbalanced force").indexOf("% RMS"), -1)
+      << window->statisticsPanel()->figure("unbalanced force").toStdString();
+  EXPECT_NE(window->statisticsPanel()->figure("last step moved").indexOf(" mm"), -1);
   EXPECT_GT(window->statisticsPanel()->plottedPoints(), 0)
       << "residual " << window->statisticsPanel()->figure("residual").toStdString() << " steps "
       << window->statisticsPanel()->steps();

@@ -18,6 +18,9 @@ namespace drape::newton {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+constexpr double kStandardGravity = 9.80665;  // m/s^2: the weight of a model without gravity
+// Near rest, the share of NewtonSettings::restForce a step's residual may leave as unbalanced force.
+constexpr double kRestResidualShare = 0.5;
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 }  // namespace
@@ -165,10 +168,47 @@ double NewtonSolver::speedPercentile() const {
 
 bool NewtonSolver::residualBelowRest(const Eigen::VectorXd& b) const {
   if (!m_nearRest) return true;
-  // The velocity error |b_i| / m_i of vertex i.
+  // The velocity error |b_i| / m_i of vertex i, and the unbalanced force the residual leaves, |b_i| / h, as a
+  // fraction of the vertex's weight: near rest a residual below tau_n can still leave a force that keeps the
+  // garment out of equilibrium (NewtonSettings::restForce).
+  const double weight = m_model.gravity.norm() > 0.0 ? m_model.gravity.norm() : kStandardGravity;
   std::vector<double> error(m_mass.size());
-  for (size_t i = 0; i < error.size(); ++i) error[i] = m_mass(i) > 0.0 ? b.segment<3>(3 * i).norm() / m_mass(i) : 0.0;
-  return percentile(std::move(error), m_settings.restPercentile) < m_settings.restSpeed;
+  double forceSquares = 0.0;
+  int count = 0;
+  for (size_t i = 0; i < error.size(); ++i) {
+    if (m_mass(i) <= 0.0) {
+      error[i] = 0.0;
+      continue;
+    }
+    const double r = b.segment<3>(3 * i).norm();
+    error[i] = r / m_mass(i);
+    forceSquares += std::pow(r / (m_h * m_mass(i) * weight), 2);
+    ++count;
+  }
+  const double forceRms = count > 0 ? std::sqrt(forceSquares / count) : 0.0;
+  return percentile(std::move(error), m_settings.restPercentile) < m_settings.restSpeed &&
+         forceRms <= kRestResidualShare * m_settings.restForce;
+}
+
+void NewtonSolver::measureEquilibrium(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                                      NewtonStepReport& report) const {
+  const double g = m_model.gravity.norm() > 0.0 ? m_model.gravity.norm() : kStandardGravity;
+  const bool haveResidual = m_lastResidual.size() == x.size();
+  double largest = 0.0, sumSquares = 0.0, displacement = 0.0;
+  int count = 0;
+  for (int i = 0; i < m_mass.size(); ++i) {
+    displacement = std::max(displacement, (x.segment<3>(3 * i) - m_x.segment<3>(3 * i)).norm());
+    if (m_mass(i) <= 0.0) continue;
+    Eigen::Vector3d f = m_mass(i) * (v.segment<3>(3 * i) - m_v.segment<3>(3 * i));
+    if (haveResidual) f += m_lastResidual.segment<3>(3 * i);
+    const double fraction = f.norm() / (m_h * m_mass(i) * g);
+    largest = std::max(largest, fraction);
+    sumSquares += fraction * fraction;
+    ++count;
+  }
+  report.forceMax = largest;
+  report.forceRms = count > 0 ? std::sqrt(sumSquares / count) : 0.0;
+  report.displacementMax = displacement;
 }
 
 // Right-hand side of eq. 4: b = M (v_n - v) - h dE/dx(x); its norm is the Newton residual.
@@ -246,7 +286,9 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
                                    NewtonStepReport& report) {
   if (m_quasiNewton) return attemptQuasiNewton(h, scale, x, v, report);
   StepContext ctx{&m_x, &m_v, h, m_time, scale, assemblyOptions()};
+  auto t0 = Clock::now();
   for (auto& e : m_energies) e->beginStep(ctx);
+  report.contactQuerySeconds += secondsSince(t0);
   // A relaxation step (zero v_n) may start from the last step's motion (NewtonSettings::relaxationGuess).
   const bool guess = m_settings.relaxationGuess && report.relaxing && m_lastDv.size() == m_v.size() && m_lastDvH > 0.0;
   v = guess ? Eigen::VectorXd((h / m_lastDvH) * m_lastDv) : m_v;
@@ -254,13 +296,19 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
   Eigen::VectorXd b, dv, vls, xls, bls;
   const double invH2 = 1.0 / (h * h);
   // The first iteration needs the gradient and the Hessian at the same x: one pass over the stencils.
-  auto t0 = Clock::now();
+  t0 = Clock::now();
   Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
   const bool atStepStart = !guess && m_settings.stepStartGradients && m_v.isZero(0.0);
   report.hessianReused = assembleFirstIteration(x, h, atStepStart, g, report.recordedGradients);
   momentumResidual(g, v, h, b);
   report.hessianSeconds += secondsSince(t0);
   if (!b.allFinite()) return NewtonStatus::Diverged;
+  // b follows the iterate: whichever state the attempt ends in, m_lastResidual is its residual.
+  struct KeepResidual {
+    Eigen::VectorXd& from;
+    Eigen::VectorXd& to;
+    ~KeepResidual() { to = from; }
+  } keep{b, m_lastResidual};
   double rn = b.norm();
   report.residual = rn;
   report.residualHistory.assign(1, rn);
@@ -415,6 +463,7 @@ NewtonStepReport NewtonSolver::step() {
     }
     m_h *= s.omega;
   }
+  measureEquilibrium(x, v, report);
   m_x = x;
   m_lastNewtonIterations = static_cast<int>(report.residualHistory.size()) - 1;
   m_lastDv = v - m_v;
@@ -430,7 +479,7 @@ NewtonStepReport NewtonSolver::step() {
   }
   report.kineticPercentile = kineticEnergyPercentile();
   report.speedPercentile = speedPercentile();
-  if (relaxing || report.speedPercentile >= s.restSpeed)
+  if (relaxing || report.speedPercentile >= s.restSpeed || report.forceRms > s.restForce)
     m_restSince = -1.0;
   else if (m_restSince < 0.0)
     m_restSince = m_time - m_h;

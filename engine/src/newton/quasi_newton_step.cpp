@@ -57,7 +57,9 @@ NewtonStatus NewtonSolver::attemptQuasiNewton(double h, double scale, Eigen::Vec
                                               NewtonStepReport& report) {
   report.quasiNewton = true;
   StepContext ctx{&m_x, &m_v, h, m_time, scale, assemblyOptions()};
+  const auto queries = Clock::now();
   for (auto& e : m_energies) e->beginStep(ctx);
+  report.contactQuerySeconds += secondsSince(queries);
   const int n = m_model.numVertices();
   const Eigen::VectorXd prediction = m_x + h * m_v;
   // Starts at the prediction x_n + h v_n. (Newton's relaxation guess, the last step's motion again, overshoots closing
@@ -210,6 +212,7 @@ NewtonStatus NewtonSolver::attemptQuasiNewton(double h, double scale, Eigen::Vec
     }
   }
   v = (x - m_x) / h;
+  m_lastResidual = -h * g;  // the potential's gradient is -b / h
   return status;
 }
 

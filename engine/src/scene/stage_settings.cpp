@@ -44,6 +44,7 @@ newton::NewtonSettings newtonSettingsFrom(const Scene& scene) {
   n.relaxationHoldStep = s.text("solver.newton.relaxation_step") == "hold";
   n.relaxationGuess = s.flag("solver.newton.relaxation_guess");
   n.restSpeed = s.number("solver.newton.rest_speed");
+  n.restForce = s.number("solver.newton.rest_force");
   n.earlyStopWindow = s.number("solver.newton.early_stop_window");
   n.restAwareConvergence = s.flag("solver.newton.rest_aware_convergence");
   n.linear.tolerance = s.number("solver.cg.tolerance");

@@ -168,7 +168,7 @@ QualityCheck seamGapCheck(const Garment& garment, const Eigen::MatrixX3d& x, con
   return c;
 }
 
-QualityCheck restCheck(const std::string& endStatus, const QualitySettings& s) {
+QualityCheck restCheck(const std::string& endStatus, const QualitySettings& s, const RestMeasures& rest) {
   QualityCheck c;
   c.name = "at_rest";
   c.value = endStatus == "AtRest" ? 1.0 : 0.0;
@@ -178,6 +178,10 @@ QualityCheck restCheck(const std::string& endStatus, const QualitySettings& s) {
                   ? std::string("at_rest: the run ended at rest")
                   : "at_rest: the run ended with " + (endStatus.empty() ? std::string("no status") : endStatus) +
                         ", not at rest" + (s.requireRest ? " (quality.require_rest)" : "");
+  if (rest.forceRms >= 0.0)
+    c.message += format("; unbalanced force %.3g %% of the weight RMS, %.3g %% at most; the last step moved %.3g mm "
+                        "at most",
+                        100.0 * rest.forceRms, 100.0 * rest.forceMax, 1e3 * rest.displacementMax);
   return c;
 }
 
@@ -191,7 +195,8 @@ const QualityCheck* QualityReport::find(std::string_view name) const {
 
 QualityReport checkDrapeQuality(const Garment& garment, const Eigen::MatrixX3d& positions,
                                 const collision::AvatarCollider* collider, double contactThickness,
-                                const std::string& endStatus, const QualitySettings& settings) {
+                                const std::string& endStatus, const QualitySettings& settings,
+                                const RestMeasures& rest) {
   QualityReport report;
   report.checks.push_back(strainCheck(garment, positions, settings));
   if (collider) {
@@ -200,14 +205,20 @@ QualityReport checkDrapeQuality(const Garment& garment, const Eigen::MatrixX3d& 
   }
   report.checks.push_back(selfIntersectionCheck(garment, positions, settings));
   report.checks.push_back(seamGapCheck(garment, positions, settings));
-  report.checks.push_back(restCheck(endStatus, settings));
+  report.checks.push_back(restCheck(endStatus, settings, rest));
   for (const QualityCheck& c : report.checks) report.passed = report.passed && c.passed;
   return report;
 }
 
 QualityReport checkDrapeQuality(const Simulation& simulation, const std::string& endStatus) {
+  RestMeasures rest;
+  if (simulation.steps() > 0) {
+    const StepReport& last = simulation.lastStep();
+    rest = {last.forceRms, last.forceMax, last.displacementMax};
+  }
   return checkDrapeQuality(simulation.garment(), simulation.positions(), simulation.collider(),
-                           simulation.contactThickness(), endStatus, qualitySettingsFrom(simulation.scene().settings));
+                           simulation.contactThickness(), endStatus, qualitySettingsFrom(simulation.scene().settings),
+                           rest);
 }
 
 }  // namespace drape

@@ -57,6 +57,10 @@ StepReport NewtonStage::step() {
   report.assemblyTime = r.hessianSeconds;
   report.gradientTime = r.gradientSeconds;
   report.linearSolveTime = r.linearSolveSeconds;
+  report.contactQueryTime = r.contactQuerySeconds;
+  report.forceMax = r.forceMax;
+  report.forceRms = r.forceRms;
+  report.displacementMax = r.displacementMax;
   report.hessianReused = r.hessianReused;
   report.coarseSolves = r.coarseSolves;
   report.coarseFactorizations = r.coarseFactorizations;

@@ -1,5 +1,6 @@
 #include "drape/sim/simulation.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -284,7 +285,17 @@ StepReport Simulation::step() {
     }
   }
   report.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  m_profile.add(report);
+  m_lastStep = report;
   return report;
+}
+
+void PhaseProfile::add(const StepReport& r) {
+  assembly += r.assemblyTime;
+  linearSolve += r.linearSolveTime;
+  contactQueries += r.contactQueryTime;
+  lineSearch += r.gradientTime;
+  bookkeeping += std::max(0.0, r.wallTime - r.assemblyTime - r.linearSolveTime - r.contactQueryTime - r.gradientTime);
 }
 
 Snapshot Simulation::snapshot() const {

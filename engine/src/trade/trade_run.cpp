@@ -62,6 +62,7 @@ TradeOutcome runTrade(const SceneRequest& base, const TradeConfig& config) {
   out.status = last.status == StepStatus::Diverged ? "Diverged" : sim.endReason();
   out.simTime = sim.time();
   out.steps = sim.steps();
+  out.profile = sim.profile();
   out.garment.vertices = sim.positions();
   out.garment.triangles = sim.garment().triangles;
   const Eigen::VectorXd stretch = triangleStretch(sim.garment().rest, out.garment.vertices, sim.garment().triangles);

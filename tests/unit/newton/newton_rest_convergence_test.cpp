@@ -20,12 +20,13 @@ namespace {
 TEST(NewtonRestConvergence, NearRestStepsIterateOnButAreNeverSplit) {
   drape::model::ClothModel m = newton::gridCloth(12, 0.5 / 11, 0.0, 3);
   m.pinned = {12 * 11, 12 * 12 - 1};
-  auto run = [&](bool restAware, double restSpeed) {
+  auto run = [&](bool restAware, double restSpeed, double restForce = 1e3) {
     newton::NewtonSettings s;
     s.relaxation = false;
     s.hessianReuseSteps = 0;
     s.restAwareConvergence = restAware;
     s.restSpeed = restSpeed;
+    s.restForce = restForce;
     s.restAwareFactor = std::numeric_limits<double>::infinity();  // every step counts as near rest
     newton::NewtonSolver solver(m, s);
     std::vector<newton::NewtonStepReport> reports;
@@ -48,6 +49,12 @@ TEST(NewtonRestConvergence, NearRestStepsIterateOnButAreNeverSplit) {
     iterations += r.newtonIterations;
   }
   std::printf("[ NewtonRestConvergence ] unreachable threshold: %.2f Newton iterations per step\n", iterations / 20.0);
+  // The same for the force the residual leaves (|b_i| / h against the vertex's weight): a rest speed every velocity
+  // error is below, an unbalanced force none is.
+  for (const auto& r : run(true, 1e3, 1e-300)) {
+    EXPECT_EQ(r.splits, 0) << "t = " << r.time;
+    EXPECT_GE(r.newtonIterations, 2) << "t = " << r.time;
+  }
 }
 
 }  // namespace

@@ -257,6 +257,14 @@ TEST(DrapeQuality, RestIsRequiredUnlessSwitchedOff) {
   s.requireRest = false;
   EXPECT_TRUE(checkDrapeQuality(g, x, nullptr, 0.002, "MaxSimTime", s).passed);
   EXPECT_FALSE(checkDrapeQuality(g, x, nullptr, 0.002, "Diverged", QualitySettings{}).passed);
+  // The balance of forces at the end, where it was measured, is in the check's line.
+  const QualityCheck rest =
+      check(checkDrapeQuality(g, x, nullptr, 0.002, "AtRest", s, RestMeasures{0.004, 0.062, 2.7e-5}), "at_rest");
+  EXPECT_NE(rest.message.find("unbalanced force 0.4 % of the weight RMS, 6.2 % at most; the last step moved 0.027 mm"),
+            std::string::npos)
+      << rest.message;
+  EXPECT_EQ(check(checkDrapeQuality(g, x, nullptr, 0.002, "AtRest", s), "at_rest").message.find("unbalanced"),
+            std::string::npos);
 }
 
 TEST(DrapeQuality, SettingsAreRegisteredWithTheirDefaults) {

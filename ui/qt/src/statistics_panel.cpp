@@ -58,7 +58,8 @@ StatisticsPanel::StatisticsPanel(QWidget* parent) : QWidget(parent) {
   auto* layout = new QVBoxLayout(this);
   auto* grid = new QGridLayout;
   const QStringList names = {tr("stage"),    tr("time"),           tr("step time"), tr("iterations"),
-                             tr("residual"), tr("kinetic energy"), tr("contacts"),  tr("max strain")};
+                             tr("residual"), tr("kinetic energy"), tr("contacts"),  tr("max strain"),
+                             tr("unbalanced force"), tr("last step moved")};
   for (int i = 0; i < names.size(); ++i) {
     auto* caption = new QLabel(names[i] + ":");
     caption->setStyleSheet("color: palette(mid);");
@@ -236,6 +237,11 @@ void StatisticsPanel::flush() {
   setFigure(tr("kinetic energy"), QStringLiteral("%1 J").arg(report.kineticEnergy, 0, 'e', 2));
   setFigure(tr("contacts"), QString::number(report.contacts));
   setFigure(tr("max strain"), QStringLiteral("%1 %").arg(report.maxStrain * 100.0, 0, 'f', 2));
+  // Equilibrium: the unbalanced force per vertex as a share of its weight, RMS and largest.
+  setFigure(tr("unbalanced force"), tr("%1 % RMS, %2 % largest of the weight")
+                                        .arg(report.forceRms * 100.0, 0, 'g', 3)
+                                        .arg(report.forceMax * 100.0, 0, 'g', 3));
+  setFigure(tr("last step moved"), tr("%1 mm at most").arg(report.displacementMax * 1e3, 0, 'g', 3));
   if (!kinetic.isEmpty()) {
     m_kinetic->append(kinetic);
     thin(m_kinetic);

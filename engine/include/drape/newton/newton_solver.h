@@ -49,6 +49,9 @@ struct NewtonSettings {
   // A speed, not a kinetic energy: 0.5 m |v|^2 per vertex shrinks with the fabric's density and the mesh's spacing,
   // so an energy threshold took a light or finely meshed garment for at rest while it still moved.
   double restSpeed = 0.02;              // m/s; 0: never at rest
+  // Equilibrium: at rest only while the RMS unbalanced force per vertex is at most this fraction of its weight
+  // (NewtonStepReport::forceRms). A garment moving slowly under an unbalanced load is not at rest.
+  double restForce = 0.05;
   double earlyStopWindow = 0.1;         // s
   double restPercentile = 0.99;         // the percentile of the speeds, velocity errors and reported kinetic energies
   // Rest-aware convergence (not in the paper): near rest, an absolute tau_n lets a step end with a momentum residual
@@ -154,6 +157,15 @@ struct NewtonStepReport {
   int coarseSolves = 0;        // linear solves with the two-level preconditioner (coarseAggregate)
   int coarseFactorizations = 0;  // coarse matrices factorised for them (coarseLagged)
   int coupledSolves = 0;       // linear solves with coupled groups (coupledThreshold)
+  // Equilibrium at the step's end: the unbalanced force on each vertex, -dE/dx = (M (v - v_n) + b) / h with b the
+  // step's final momentum residual, as a fraction of the vertex's weight m_i |g| (standard gravity when the model has
+  // none): its largest value and its root mean square over the vertices with mass; and the largest vertex
+  // displacement of the step, m.
+  double forceMax = 0.0;
+  double forceRms = 0.0;
+  double displacementMax = 0.0;
+  // Wall time of the energies' per-step set-up (beginStep: contact candidates, friction's lagged contact set), s.
+  double contactQuerySeconds = 0.0;
   bool quasiNewton = false;    // solved by L-BFGS (setQuasiNewton): newtonIterations counts its iterations
   int lineSearchEvaluations = 0;  // potential evaluations of the line searches (quasi-Newton)
 };
@@ -209,6 +221,9 @@ class NewtonSolver {
   // Per vertex (|V|, N/m): the largest eigenvalue of the diagonal Hessian block at x of the terms assembled afresh
   // in every iteration (contact, friction, the drag spring); 0 where they add none. Assembles into m_freshHessian.
   void freshVertexStiffness(const Eigen::VectorXd& x, Eigen::VectorXd& k);
+  // Fills the report's forceMax, forceRms and displacementMax for the accepted step from x_n, v_n (m_x, m_v) to x, v
+  // with final momentum residual m_lastResidual.
+  void measureEquilibrium(const Eigen::VectorXd& x, const Eigen::VectorXd& v, NewtonStepReport& report) const;
   // b = M (v_n - v) - h dE/dx(x) (eq. 4); momentumResidual takes the gradient g = dE/dx already summed.
   void residual(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double h, Eigen::VectorXd& b) const;
   void momentumResidual(const Eigen::VectorXd& g, const Eigen::VectorXd& v, double h, Eigen::VectorXd& b) const;
@@ -269,6 +284,7 @@ class NewtonSolver {
   bool m_coupledStale = true;
   bool m_useCoupled = false;
   std::atomic<bool> m_cancel{false};
+  Eigen::VectorXd m_lastResidual;  // the momentum residual b of the last attempt's final iterate
   std::shared_ptr<model::StepPreconditioner> m_quasiNewton;  // setQuasiNewton
   QuasiNewtonSettings m_qnSettings;
   BlockMatrix m_freshHessian;  // freshVertexStiffness's diagonal-pattern matrix

@@ -41,14 +41,25 @@ struct QualityReport {
   const QualityCheck* find(std::string_view name) const;
 };
 
+// The balance of forces at the run's end (the last step's StepReport): the RMS and the largest unbalanced force per
+// vertex as a fraction of its weight, and the last step's largest vertex displacement, m. at_rest reports it;
+// forceRms < 0: not measured (no step ran).
+struct RestMeasures {
+  double forceRms = -1.0;
+  double forceMax = 0.0;
+  double displacementMax = 0.0;
+};
+
 // Checks a simulated garment: `positions` (|V| x 3, metres) of `garment` (rest shape, triangles, stitch pairs),
 // against `collider` (the avatar and generated colliders the simulation's contact uses; nullptr: none, and the
 // collider checks are left out), with the contact thickness (metres; the depth threshold when
 // settings.maxPenetrationDepth is 0) and the run's end status ("AtRest", "MaxSimTime", "MaxSteps", "Diverged",
-// "Cancelled"). Thread-safe; the signed distances and the triangle pairs are computed in parallel.
+// "Cancelled") and its balance of forces there. Thread-safe; the signed distances and the triangle pairs are computed
+// in parallel.
 QualityReport checkDrapeQuality(const Garment& garment, const Eigen::MatrixX3d& positions,
                                 const collision::AvatarCollider* collider, double contactThickness,
-                                const std::string& endStatus, const QualitySettings& settings);
+                                const std::string& endStatus, const QualitySettings& settings,
+                                const RestMeasures& rest = {});
 // The same for a simulation's current state, with its scene's quality settings, collider and contact thickness.
 QualityReport checkDrapeQuality(const Simulation& simulation, const std::string& endStatus);
 

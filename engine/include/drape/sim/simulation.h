@@ -49,12 +49,32 @@ struct StepReport {
   double assemblyTime = 0.0;
   double gradientTime = 0.0;
   double linearSolveTime = 0.0;
+  double contactQueryTime = 0.0;  // wall seconds in the contact terms' per-step queries (candidates, friction's set)
+  // Equilibrium at the step's end (newton::NewtonStepReport): the largest and the RMS unbalanced force per vertex as a
+  // fraction of its weight, and the step's largest vertex displacement, m.
+  double forceMax = 0.0;
+  double forceRms = 0.0;
+  double displacementMax = 0.0;
   bool hessianReused = false;    // drape: the first Newton iteration solved with an earlier step's elastic Hessian
   int coarseSolves = 0;          // drape: linear solves with the two-level PCG (solver.cg.coarse_aggregate)
   int coarseFactorizations = 0;  // drape: coarse matrices factorised for them (solver.cg.coarse_lagged)
   int coupledSolves = 0;         // drape: linear solves with coupled groups (solver.cg.coupled_groups)
   bool relaxing = false;         // the step was inside the initial relaxation (velocities zeroed)
   bool atRest = false;           // early stop reached
+};
+
+// Where a simulation's wall time went, summed over its steps (s): assembling Hessians (the preview: its
+// preconditioner), solving the linear systems (the preview: its search directions), the contact terms' per-step
+// queries, evaluating residuals for the line searches, and the rest of each step (the stage's statistics, the
+// strain and explosion checks, the hand-over).
+struct PhaseProfile {
+  double assembly = 0.0;
+  double linearSolve = 0.0;
+  double contactQueries = 0.0;
+  double lineSearch = 0.0;
+  double bookkeeping = 0.0;
+  double total() const { return assembly + linearSolve + contactQueries + lineSearch + bookkeeping; }
+  void add(const StepReport& r);
 };
 
 // Where a running simulation is, so that the simulation of an edited scene (another fabric, a pin added in the
@@ -128,6 +148,10 @@ class Simulation {
   Eigen::MatrixX3d positions() const;  // |V| x 3, metres
   double time() const;
   int steps() const { return m_steps; }
+  // The last step's report (a default one before the first step).
+  const StepReport& lastStep() const { return m_lastStep; }
+  // The wall time of the steps so far, by phase.
+  const PhaseProfile& profile() const { return m_profile; }
   // Contact thickness the solvers use, metres (contact.thickness, else the thickest fabric, at least 2 mm).
   double contactThickness() const { return m_settings.contact.thickness; }
   // The avatar and generated colliders, merged, as the stages' contact sees them; nullptr when the scene has none.
@@ -143,6 +167,8 @@ class Simulation {
   std::unique_ptr<Model> m_model;
   std::unique_ptr<StageSolver> m_stage;
   int m_steps = 0;
+  PhaseProfile m_profile;
+  StepReport m_lastStep;
   bool m_atRest = false;
   bool m_resumed = false;
   double m_stageStart = 0.0;       // scene time at which the current stage started, s

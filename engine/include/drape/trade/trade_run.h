@@ -10,6 +10,7 @@
 
 #include "drape/geometry/triangle_mesh.h"
 #include "drape/scene/scene.h"
+#include "drape/sim/simulation.h"
 
 namespace drape::trade {
 
@@ -32,6 +33,7 @@ struct TradeOutcome {
   double maxStrain = 0.0;
   int insideVertices = 0;          // deeper inside a collider than the contact thickness
   std::vector<std::string> terms;  // the energy (drape) and constraint (preview) terms of every stage it ran
+  PhaseProfile profile;            // where its steps' wall time went
   bool atRest() const { return status == "AtRest"; }
 };
 
