@@ -69,6 +69,9 @@ std::string usageText() {
                                           drape, kept in REF.json and reused when it exists (docs/TRADE.md)
   drape --trade-plot REPORT.json... -o TRADE.png
                                           the Pareto plot of trade reports, one series per scene
+  drape --scaling-plot SCALING.json -o SCALING.png
+                                          time to rest and peak memory against the vertex count, log-log (a
+                                          report of bench/scaling.py)
   drape --trade-levels REPORT.json... -o LEVELS.json
                                           the GUI's speed/accuracy levels: the candidates on the reports' Pareto front
   drape --bench SCENE --extremes [--solver preview|drape|full] [--cell NAME]... [-o REPORT.json] [--max-sim-time S]
@@ -202,6 +205,8 @@ CliOptions parseCommandLine(int argc, char** argv) {
       setMode(Mode::TradePlot, a);
     } else if (a == "--trade-levels") {
       setMode(Mode::TradeLevels, a);
+    } else if (a == "--scaling-plot") {
+      setMode(Mode::ScalingPlot, a);
     } else if (a == "--render") {
       setMode(Mode::Render, a);
       o.scene.input = value(i, a);
@@ -269,6 +274,11 @@ CliOptions parseCommandLine(int argc, char** argv) {
     const std::string flag = o.mode == Mode::TradePlot ? "--trade-plot" : "--trade-levels";
     if (positional.empty()) throw InputError(flag + ": no trade report given (REPORT.json from drape --bench -o)");
     if (o.output.empty()) throw InputError(flag + ": missing -o OUTPUT");
+    o.reports = positional;
+  } else if (o.mode == Mode::ScalingPlot) {
+    if (positional.size() != 1)
+      throw InputError("--scaling-plot: give one scaling report (SCALING.json from bench/scaling.py)");
+    if (o.output.empty()) throw InputError("--scaling-plot: missing -o OUTPUT");
     o.reports = positional;
   } else if (!positional.empty()) {
     throw InputError("unexpected argument '" + positional[0] + "' (see drape --help)");

@@ -17,6 +17,7 @@ enum class Mode {
   Render,
   Bench,
   TradePlot,
+  ScalingPlot,
   TradeLevels,
   MakeAvatar,
   Batch,
@@ -45,7 +46,7 @@ struct CliOptions {
   std::string reference;               // --reference FILE (bench): the reference drape, kept there and reused
   std::string plot;                    // --plot FILE.png (bench): the report's Pareto plot
   int rounds = 1;                      // --rounds N (bench): every run N times, interleaved; the fastest counts
-  std::vector<std::string> reports;    // the trade reports of --trade-plot and --trade-levels
+  std::vector<std::string> reports;    // the reports of --trade-plot, --trade-levels, --scaling-plot
   std::string batch;                   // --batch MANIFEST.json
   int jobs = 0;                        // --jobs N (batch): jobs at a time; 0: the core count
   bool list = false;                   // --list (batch): print the job list, run nothing

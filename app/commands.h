@@ -17,6 +17,8 @@ int runBench(const CliOptions& options, std::ostream& out);
 int runExtremes(const CliOptions& options, std::ostream& out);
 // --trade-plot REPORT.json... -o TRADE.png: the Pareto plot of trade reports (trade_report.cpp).
 int runTradePlot(const CliOptions& options, std::ostream& out);
+// --scaling-plot SCALING.json -o SCALING.png: time to rest and peak memory against vertices (scaling_plot.cpp).
+int runScalingPlot(const CliOptions& options, std::ostream& out);
 // --trade-levels REPORT.json... -o LEVELS.json: the GUI's speed/accuracy levels from the reports' candidates.
 int runTradeLevels(const CliOptions& options, std::ostream& out);
 int runMakeAvatar(const CliOptions& options, std::ostream& out);

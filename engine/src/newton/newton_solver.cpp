@@ -168,9 +168,9 @@ double NewtonSolver::speedPercentile() const {
 
 bool NewtonSolver::residualBelowRest(const Eigen::VectorXd& b) const {
   if (!m_nearRest) return true;
-  // The velocity error |b_i| / m_i of vertex i, and the unbalanced force the residual leaves, |b_i| / h, as a
-  // fraction of the vertex's weight: near rest a residual below tau_n can still leave a force that keeps the
-  // garment out of equilibrium (NewtonSettings::restForce).
+  // The velocity error |b_i| / m_i of vertex i, and, in a step that starts as slow as the early stop asks, the
+  // unbalanced force the residual leaves, |b_i| / h, as a fraction of the vertex's weight: a residual below tau_n can
+  // still leave a force that keeps the garment out of equilibrium (NewtonSettings::restForce).
   const double weight = m_model.gravity.norm() > 0.0 ? m_model.gravity.norm() : kStandardGravity;
   std::vector<double> error(m_mass.size());
   double forceSquares = 0.0;
@@ -187,7 +187,7 @@ bool NewtonSolver::residualBelowRest(const Eigen::VectorXd& b) const {
   }
   const double forceRms = count > 0 ? std::sqrt(forceSquares / count) : 0.0;
   return percentile(std::move(error), m_settings.restPercentile) < m_settings.restSpeed &&
-         forceRms <= kRestResidualShare * m_settings.restForce;
+         (!m_slowStart || forceRms <= kRestResidualShare * m_settings.restForce);
 }
 
 void NewtonSolver::measureEquilibrium(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
@@ -429,8 +429,9 @@ NewtonStepReport NewtonSolver::step() {
   for (size_t k = 0; k < m_elasticCount; ++k)
     m_energies[k]->setRecordStepStartGradient(relaxing && s.stepStartGradients && !s.relaxationGuess &&
                                               !m_quasiNewton);
-  m_nearRest = s.restAwareConvergence && !relaxing &&
-               speedPercentile() < s.restAwareFactor * s.restSpeed;
+  const double speed = speedPercentile();
+  m_nearRest = s.restAwareConvergence && !relaxing && speed < s.restAwareFactor * s.restSpeed;
+  m_slowStart = m_nearRest && speed < s.restSpeed;
   Eigen::VectorXd x, v;
   NewtonStatus keptStatus = NewtonStatus::Converged;
   while (true) {

@@ -211,7 +211,7 @@ void placeLabels(QChart* chart, const std::vector<PendingLabel>& labels, const Q
 }  // namespace
 
 void writeTradePlot(const std::vector<TradeSeries>& series, const std::string& title, const std::filesystem::path& file,
-                    int width, int height) {
+                    int width, int height, const PlotAxes& axes) {
   validate(series, file, width, height);
   const QuietQtMessages quiet;
   const auto application = chartApplication(file);  // declared before the scene: outlives it and the chart
@@ -243,8 +243,8 @@ void writeTradePlot(const std::vector<TradeSeries>& series, const std::string& t
   chart->setMargins(QMargins(10, 10, 20, ranges.hasZero ? 10 + kNoteHeight : 10));
   chart->setGeometry(QRectF(0, 0, width, height));
 
-  auto* xAxis = logAxis("wall time (s)", ranges.xMin, ranges.xMax, axisFont, axisTitleFont);
-  auto* yAxis = logAxis("mean distance to the reference drape (mm)", ranges.yMin, ranges.yMax, axisFont, axisTitleFont);
+  auto* xAxis = logAxis(QString::fromStdString(axes.x), ranges.xMin, ranges.xMax, axisFont, axisTitleFont);
+  auto* yAxis = logAxis(QString::fromStdString(axes.y), ranges.yMin, ranges.yMax, axisFont, axisTitleFont);
   chart->addAxis(xAxis, Qt::AlignBottom);
   chart->addAxis(yAxis, Qt::AlignLeft);
 

@@ -240,6 +240,7 @@ class NewtonSolver {
   int m_goodSteps = 0;
   double m_restSince = -1.0;
   bool m_nearRest = false;  // this step started near rest (restAwareConvergence)
+  bool m_slowStart = false;  // ... and below the rest speed: its residual must also leave the forces balanced
   // Assembles the first iteration's gradient g and Hessian (m_matrix, without the mass term unless
   // m_matrixReady says it is already there) at x: the elastic part reused when allowed (returns true), otherwise
   // assembled and saved for reuse.

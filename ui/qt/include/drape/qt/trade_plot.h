@@ -19,6 +19,14 @@ struct TradeSeries {
   std::vector<TradePoint> points;
 };
 
+// The axes' titles. The trade plot's by default; another log-log plot drawn by the same machinery (drape
+// --scaling-plot: time and memory against the vertex count) gives its own and puts its x in a point's wallSeconds and
+// its y in distanceMm.
+struct PlotAxes {
+  std::string x = "wall time (s)";
+  std::string y = "mean distance to the reference drape (mm)";
+};
+
 // Draws the trade as a scatter plot (wall time in seconds, log axis, against mean distance to the reference in mm,
 // log axis), one coloured series per scene with its name in the legend, each point labelled with its label, and each
 // series' Pareto front as a line in the series' colour through its `pareto` points in order of wall time (not in the
@@ -39,6 +47,6 @@ struct TradeSeries {
 // point), the process has a QCoreApplication or QGuiApplication but no QApplication, or the file cannot be written
 // (missing directory, ...); a failed write leaves any previous file intact.
 void writeTradePlot(const std::vector<TradeSeries>& series, const std::string& title, const std::filesystem::path& file,
-                    int width = 1200, int height = 800);
+                    int width = 1200, int height = 800, const PlotAxes& axes = {});
 
 }  // namespace drape::qt
