@@ -19,8 +19,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr double kStandardGravity = 9.80665;  // m/s^2: the weight of a model without gravity
-// Near rest, the share of NewtonSettings::restForce a step's residual may leave as unbalanced force.
-constexpr double kRestResidualShare = 0.5;
+
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 }  // namespace
@@ -187,7 +186,7 @@ bool NewtonSolver::residualBelowRest(const Eigen::VectorXd& b) const {
   }
   const double forceRms = count > 0 ? std::sqrt(forceSquares / count) : 0.0;
   return percentile(std::move(error), m_settings.restPercentile) < m_settings.restSpeed &&
-         (!m_slowStart || forceRms <= kRestResidualShare * m_settings.restForce);
+         (!m_slowStart || forceRms <= m_settings.restForce);
 }
 
 void NewtonSolver::measureEquilibrium(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
@@ -293,7 +292,9 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
   const bool guess = m_settings.relaxationGuess && report.relaxing && m_lastDv.size() == m_v.size() && m_lastDvH > 0.0;
   v = guess ? Eigen::VectorXd((h / m_lastDvH) * m_lastDv) : m_v;
   x = m_x + h * v;
-  Eigen::VectorXd b, dv, vls, xls, bls;
+  // b is the member itself: whichever state the attempt ends in, m_lastResidual is its residual.
+  Eigen::VectorXd& b = m_lastResidual;
+  Eigen::VectorXd dv, vls, xls, bls;
   const double invH2 = 1.0 / (h * h);
   // The first iteration needs the gradient and the Hessian at the same x: one pass over the stencils.
   t0 = Clock::now();
@@ -303,12 +304,6 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
   momentumResidual(g, v, h, b);
   report.hessianSeconds += secondsSince(t0);
   if (!b.allFinite()) return NewtonStatus::Diverged;
-  // b follows the iterate: whichever state the attempt ends in, m_lastResidual is its residual.
-  struct KeepResidual {
-    Eigen::VectorXd& from;
-    Eigen::VectorXd& to;
-    ~KeepResidual() { to = from; }
-  } keep{b, m_lastResidual};
   double rn = b.norm();
   report.residual = rn;
   report.residualHistory.assign(1, rn);
@@ -361,6 +356,7 @@ NewtonStatus NewtonSolver::attempt(double h, double scale, Eigen::VectorXd& x, E
     linear.cache = m_matrixReady ? &m_pcgCache : nullptr;
     if (m_settings.cgForcing > 0.0 && rn > 0.0)
       linear.tolerance = std::max(linear.tolerance, std::min(0.5, m_settings.cgForcing * m_settings.tauNewton / rn));
+
     LinearSolveResult ls = solveLinear(m_matrix, b * invH2, dv, linear);
     report.linearSolveSeconds += secondsSince(t0);
     ++report.newtonIterations;
@@ -480,7 +476,7 @@ NewtonStepReport NewtonSolver::step() {
   }
   report.kineticPercentile = kineticEnergyPercentile();
   report.speedPercentile = speedPercentile();
-  if (relaxing || report.speedPercentile >= s.restSpeed || report.forceRms > s.restForce)
+  if (relaxing || report.speedPercentile >= s.restSpeed)
     m_restSince = -1.0;
   else if (m_restSince < 0.0)
     m_restSince = m_time - m_h;

@@ -151,8 +151,10 @@ NewtonStatus NewtonSolver::attemptQuasiNewton(double h, double scale, Eigen::Vec
       slope = g.dot(d);
     }
     report.linearSolveSeconds += secondsSince(t0);
-    if (!(slope < 0.0) || !d.allFinite())
+    if (!(slope < 0.0) || !d.allFinite()) {
+      m_lastResidual = -h * g;
       return rn < m_settings.tauNewton ? NewtonStatus::Converged : NewtonStatus::Diverged;
+    }
     // The full step first, judged by the gradient there (needed anyway): by the trapezoidal rule Phi(x + d) - Phi(x)
     // ~ (g + g_t) . d / 2, exact where Phi is quadratic along d, so Armijo's sufficient decrease holds when
     // g_t . d <= (1 - 2 c1) |g . d|. Otherwise a backtracking line search on Phi's values (Armijo).

@@ -133,9 +133,9 @@ const std::vector<SettingSpec>& Settings::specs() {
           {"solver.newton.rest_speed", T::Number, "0.02", "m/s",
                "early stop: the drape is at rest when the 99th percentile of vertex speeds stays below this for "
                "early_stop_window (0: never)", 0, 10},
-          {"solver.newton.rest_force", T::Number, "0.05", "",
-               "early stop: the drape is at rest only while the root mean square of the unbalanced force on each vertex, as "
-               "a fraction of its weight, is at most this (equilibrium; with rest_speed)", 1e-6, 1e3},
+          {"solver.newton.rest_force", T::Number, "0.025", "",
+               "balance near rest: a step that starts below the rest speed iterates on (up to max_iterations) while the "
+               "force its residual leaves, as a fraction of each vertex's weight (RMS), is above this", 1e-9, 1e3},
           {"solver.newton.rest_aware_convergence", T::Boolean, "true", "",
                "a step below tau_n iterates on (up to max_iterations) while its residual's velocity error is above the rest "
                "speed: near rest tau_n alone accepts errors that keep the garment creeping"},

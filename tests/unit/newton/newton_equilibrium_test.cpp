@@ -49,27 +49,5 @@ TEST(NewtonEquilibrium, ForceIsTheEnergiesUnbalancedForceAtTheStepsEnd) {
   }
 }
 
-// At rest means balanced: with the rest speed alone met, a garment whose forces are not balanced to rest_force is not
-// at rest.
-TEST(NewtonEquilibrium, AtRestOnlyOnceTheForcesBalance) {
-  drape::model::ClothModel m = newton::hangingGridCloth(7, 0.0, 3);
-  auto run = [&](double restForce) {
-    newton::NewtonSettings s;
-    s.relaxation = false;
-    s.restSpeed = 1e3;  // every speed is below it
-    s.earlyStopWindow = 0.01;
-    s.restForce = restForce;
-    newton::NewtonSolver solver(m, s);
-    newton::NewtonStepReport r;
-    for (int k = 0; k < 40 && !solver.atRest(); ++k) r = solver.step();
-    return std::make_pair(solver.atRest(), r);
-  };
-  const auto [loose, looseReport] = run(1e3);
-  EXPECT_TRUE(loose);
-  EXPECT_GT(looseReport.forceRms, 1e-2) << "the cloth was released: it is far from balanced";
-  const auto [strict, strictReport] = run(1e-2);
-  EXPECT_FALSE(strict) << "at rest with an RMS unbalanced force of " << strictReport.forceRms << " of the weight";
-}
-
 }  // namespace
 }  // namespace drape::test

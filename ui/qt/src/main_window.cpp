@@ -9,6 +9,9 @@
 #include <QLabel>
 #include <QMenuBar>
 #include <QPlainTextEdit>
+#include <QScreen>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QStatusBar>
 #include <QStyle>
 #include <QToolBar>
@@ -48,7 +51,10 @@ MainWindow::MainWindow(UserDialogs* dialogs, QWidget* parent) : QMainWindow(pare
   statusBar()->addPermanentWidget(m_status);
   updateActions();
   updateTitle();
-  resize(1440, 900);
+  // 1440 x 900, or what the screen holds.
+  QSize size(1440, 900);
+  if (const QScreen* s = screen()) size = size.boundedTo(s->availableGeometry().size());
+  resize(size);
 }
 
 MainWindow::~MainWindow() {
@@ -207,6 +213,17 @@ void MainWindow::createDocks() {
     addDockWidget(area, d);
     return d;
   };
+  // A panel scrolls up and down when its dock is shorter than the panel (a laptop's 768 pixels hold the docks of one
+  // side only so), never sideways: the dock is at least as wide as the panel needs.
+  auto scrolled = [](QWidget* panel) {
+    auto* area = new QScrollArea;
+    area->setWidget(panel);
+    area->setWidgetResizable(true);
+    area->setFrameShape(QFrame::NoFrame);
+    area->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+    area->setMinimumWidth(panel->minimumSizeHint().width() + area->verticalScrollBar()->sizeHint().width());
+    return area;
+  };
   m_scenePanel = new ScenePanel;
   m_fabricPanel = new FabricPanel;
   m_simulationPanel = new SimulationPanel(m_sim);
@@ -214,10 +231,12 @@ void MainWindow::createDocks() {
   m_log = new QPlainTextEdit;
   m_log->setReadOnly(true);
   m_log->setMaximumBlockCount(5000);
-  QDockWidget* sceneDock = dock(tr("Scene"), "SceneDock", m_scenePanel, Qt::LeftDockWidgetArea);
-  QDockWidget* fabricDock = dock(tr("Fabric"), "FabricDock", m_fabricPanel, Qt::LeftDockWidgetArea);
-  QDockWidget* simDock = dock(tr("Simulation"), "SimulationDock", m_simulationPanel, Qt::RightDockWidgetArea);
-  QDockWidget* statsDock = dock(tr("Statistics"), "StatisticsDock", m_statisticsPanel, Qt::RightDockWidgetArea);
+  QDockWidget* sceneDock = dock(tr("Scene"), "SceneDock", scrolled(m_scenePanel), Qt::LeftDockWidgetArea);
+  QDockWidget* fabricDock = dock(tr("Fabric"), "FabricDock", scrolled(m_fabricPanel), Qt::LeftDockWidgetArea);
+  QDockWidget* simDock =
+      dock(tr("Simulation"), "SimulationDock", scrolled(m_simulationPanel), Qt::RightDockWidgetArea);
+  QDockWidget* statsDock =
+      dock(tr("Statistics"), "StatisticsDock", scrolled(m_statisticsPanel), Qt::RightDockWidgetArea);
   QDockWidget* logDock = dock(tr("Log"), "LogDock", m_log, Qt::BottomDockWidgetArea);
   resizeDocks({sceneDock, fabricDock}, {330, 330}, Qt::Horizontal);
   resizeDocks({simDock, statsDock}, {360, 360}, Qt::Horizontal);
