@@ -65,8 +65,8 @@ struct StepReport {
 
 // Where a simulation's wall time went, summed over its steps (s): assembling Hessians (the preview: its
 // preconditioner), solving the linear systems (the preview: its search directions), the contact terms' per-step
-// queries, evaluating residuals for the line searches, and the rest of each step (the stage's statistics, the
-// strain and explosion checks, the hand-over).
+// queries, evaluating residuals for the line searches (the preview: all its gradient and potential evaluations), and
+// the rest of each step (the stage's statistics, the strain and explosion checks, the hand-over).
 struct PhaseProfile {
   double assembly = 0.0;
   double linearSolve = 0.0;
