@@ -11,9 +11,8 @@ pairs at rest (the verdict's self_intersections), the largest seam gap, the rati
 import argparse
 import json
 import os
-import subprocess
-import sys
-import time
+
+from drape_process import simulate
 
 GC = os.path.join("..", "shared", "data", "garmentcode")
 SCENES = [
@@ -35,13 +34,7 @@ def run(drape, scene, solver, self_contact, out):
     stats = out + ".json"
     cmd = [drape, "--simulate", *scene, "--solver", solver, "-o", out, "--stats", stats,
            "--set", f"contact.self_collision={'true' if self_contact else 'false'}"]
-    start = time.perf_counter()
-    done = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    wall = time.perf_counter() - start
-    if done.returncode not in (0, 4):  # 4: the verdict failed, the drape is written
-        sys.exit(f"{' '.join(cmd)}: exit {done.returncode}: {done.stderr.strip()}")
-    with open(stats) as f:
-        s = json.load(f)
+    wall, s = simulate(cmd, stats)
     checks = s["quality"]["checks"]
     gap = checks.get("seam_gap", {}).get("value")
     return {"wall": wall, "crossings": int(checks["self_intersections"]["value"]), "seam_gap": gap,

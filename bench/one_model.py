@@ -16,9 +16,9 @@ import argparse
 import json
 import math
 import os
-import subprocess
 import sys
-import time
+
+from drape_process import simulate
 
 SHARED = os.path.join("..", "shared", "data", "garmentcode")
 SCENES = [
@@ -50,13 +50,7 @@ def run(drape, scene, solver, out, extra=()):
     """Runs drape --simulate; returns (wall seconds, stats)."""
     stats = out + ".json"
     cmd = [drape, "--simulate", *scene, "--solver", solver, "-o", out, "--stats", stats, *extra]
-    start = time.perf_counter()
-    done = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    wall = time.perf_counter() - start
-    if done.returncode not in (0, 4):  # 4: the quality verdict failed, the drape is written
-        sys.exit(f"{' '.join(cmd)}: exit {done.returncode}: {done.stderr.strip()}")
-    with open(stats) as f:
-        return wall, json.load(f)
+    return simulate(cmd, stats)
 
 
 def crossings(stats):

@@ -14,9 +14,8 @@ import argparse
 import json
 import math
 import os
-import subprocess
-import sys
-import time
+
+from drape_process import simulate
 
 SCENE = "bench/scenes/tshirt_female.json"
 EDGES_CM = [3.0, 2.0, 1.4, 1.0, 0.7]
@@ -26,13 +25,7 @@ def run(drape, edge_cm, out):
     stats, rss = out + ".json", out + ".rss"
     cmd = ["/usr/bin/time", "-f", "%M", "-o", rss, drape, "--simulate", SCENE, "--solver", "drape", "--set",
            f"mesh.target_edge_length={edge_cm / 100:g}", "-o", out, "--stats", stats]
-    start = time.perf_counter()
-    done = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    wall = time.perf_counter() - start
-    if done.returncode not in (0, 4):  # 4: the verdict failed, the drape is written
-        sys.exit(f"{' '.join(cmd)}: exit {done.returncode}: {done.stderr.strip()}")
-    with open(stats) as f:
-        s = json.load(f)
+    wall, s = simulate(cmd, stats)
     with open(rss) as f:
         peak_kb = int(f.read().split()[-1])
     return {"edge_cm": edge_cm, "vertices": s["vertices"], "wall_s": wall, "peak_mb": peak_kb / 1024.0,
