@@ -3,6 +3,8 @@
 // translation and an XYZ Euler rotation, and stitches joining pairs of panel edges.
 // Coordinates here are in the file's units; Pattern::unitsInMeter converts (100 = centimetres).
 #include <Eigen/Core>
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +38,11 @@ struct Panel {
   std::vector<PanelEdge> edges;           // closed loop: edges[i].end == edges[i+1].start
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();  // file units
   Eigen::Vector3d rotationDeg = Eigen::Vector3d::Zero();  // XYZ Euler angles, degrees
+  // Markings in the panel's 2D frame, file units. The pattern view, the printouts and DXF-AAMA carry them; the
+  // grain line, when given, is the warp direction (otherwise the warp runs along the panel's x axis).
+  std::optional<std::array<Eigen::Vector2d, 2>> grainLine;  // from, to
+  std::vector<Eigen::Vector2d> notches;                     // points on the outline
+  std::vector<std::vector<Eigen::Vector2d>> internalLines;  // open polylines: darts, placement and fold lines
 };
 
 struct StitchSide {
