@@ -72,6 +72,9 @@ std::string usageText() {
   drape --scaling-plot SCALING.json -o SCALING.png
                                           time to rest and peak memory against the vertex count, log-log (a
                                           report of bench/scaling.py)
+  drape --write-pattern PATTERN -o OUT.(json|dxf|pdf|svg)
+                                          the pattern (GarmentCode JSON, DXF-AAMA, or a scene's) as GarmentCode
+                                          JSON, as DXF-AAMA, or at full scale with a 10 cm check square (PDF, SVG)
   drape --trade-levels REPORT.json... -o LEVELS.json
                                           the GUI's speed/accuracy levels: the candidates on the reports' Pareto front
   drape --bench SCENE --extremes [--solver preview|drape|full] [--cell NAME]... [-o REPORT.json] [--max-sim-time S]
@@ -101,7 +104,7 @@ std::string usageText() {
   drape --help | --version
 
 Scene options (every headless mode):
-  SCENE may be a scene file or a bare pattern file (GarmentCode JSON).
+  SCENE may be a scene file or a bare pattern file (GarmentCode JSON, or DXF-AAMA: pieces without seams).
   --avatar FILE            avatar or collider mesh (obj, glb, gltf, fbx, ply, stl)
   --avatar-units U        unit of the avatar file: m, cm, mm or in (inches); default m
   --fabric PRESET          fabric of every panel (see --list-fabrics)
@@ -207,6 +210,9 @@ CliOptions parseCommandLine(int argc, char** argv) {
       setMode(Mode::TradeLevels, a);
     } else if (a == "--scaling-plot") {
       setMode(Mode::ScalingPlot, a);
+    } else if (a == "--write-pattern") {
+      setMode(Mode::WritePattern, a);
+      o.scene.input = value(i, a);
     } else if (a == "--render") {
       setMode(Mode::Render, a);
       o.scene.input = value(i, a);
@@ -283,10 +289,13 @@ CliOptions parseCommandLine(int argc, char** argv) {
   } else if (!positional.empty()) {
     throw InputError("unexpected argument '" + positional[0] + "' (see drape --help)");
   }
-  if ((o.mode == Mode::Simulate || o.mode == Mode::Render || o.mode == Mode::MakeAvatar) && o.output.empty())
-    throw InputError(std::string(o.mode == Mode::Render     ? "--render"
-                                 : o.mode == Mode::Simulate ? "--simulate"
-                                                            : "--make-avatar") +
+  if ((o.mode == Mode::Simulate || o.mode == Mode::Render || o.mode == Mode::MakeAvatar ||
+       o.mode == Mode::WritePattern) &&
+      o.output.empty())
+    throw InputError(std::string(o.mode == Mode::Render         ? "--render"
+                                 : o.mode == Mode::Simulate     ? "--simulate"
+                                 : o.mode == Mode::WritePattern ? "--write-pattern"
+                                                                : "--make-avatar") +
                      ": missing -o OUTPUT");
   if (o.mode == Mode::Batch && o.output.empty() && !o.list) throw InputError("--batch: missing -o OUTDIR");
   if ((o.jobs > 0 || o.list || o.shardCount > 0 || o.gather || o.slurm) && o.mode != Mode::Batch)

@@ -18,6 +18,7 @@ enum class Mode {
   Bench,
   TradePlot,
   ScalingPlot,
+  WritePattern,
   TradeLevels,
   MakeAvatar,
   Batch,

@@ -19,6 +19,9 @@ int runExtremes(const CliOptions& options, std::ostream& out);
 int runTradePlot(const CliOptions& options, std::ostream& out);
 // --scaling-plot SCALING.json -o SCALING.png: time to rest and peak memory against vertices (scaling_plot.cpp).
 int runScalingPlot(const CliOptions& options, std::ostream& out);
+// --write-pattern PATTERN -o OUT.(json|dxf|pdf|svg): the pattern as GarmentCode JSON, DXF-AAMA or printed at full
+// scale (write_pattern_command.cpp).
+int runWritePattern(const CliOptions& options, std::ostream& out);
 // --trade-levels REPORT.json... -o LEVELS.json: the GUI's speed/accuracy levels from the reports' candidates.
 int runTradeLevels(const CliOptions& options, std::ostream& out);
 int runMakeAvatar(const CliOptions& options, std::ostream& out);

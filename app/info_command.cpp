@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "drape/avatar/avatar_loader.h"
+#include "drape/pattern/dxf_aama.h"
 #include "drape/pattern/edge_curve.h"
 #include "drape/scene/pins.h"
 #include "drape/sim/scene_garment.h"
@@ -42,7 +43,11 @@ void describePattern(const Pattern& pattern, std::ostream& out) {
     }
     out << "    panel '" << p.name << "': " << p.vertices.size() << " vertices, " << p.edges.size() << " edges ("
         << curved << " curved), perimeter " << std::fixed << std::setprecision(3)
-        << perimeter / pattern.unitsInMeter << " m\n" << std::defaultfloat;
+        << perimeter / pattern.unitsInMeter << " m" << std::defaultfloat;
+    if (p.grainLine) out << ", grain line";
+    if (!p.notches.empty()) out << ", " << p.notches.size() << " notches";
+    if (!p.internalLines.empty()) out << ", " << p.internalLines.size() << " internal lines";
+    out << "\n";
   }
 }
 
@@ -74,7 +79,7 @@ void describeScene(const Scene& scene, std::ostream& out) {
 
 int runInfo(const CliOptions& options, std::ostream& out) {
   const auto& file = options.scene.input;
-  if (file.extension() == ".json") {
+  if (file.extension() == ".json" || isDxfFile(file)) {
     const Scene scene = loadScene(options.scene);
     if (!isPatternFile(file)) out << "scene: " << file.string() << "\n";
     describeScene(scene, out);

@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
       case Mode::Bench: return runBench(options, std::cout);
       case Mode::TradePlot: return runTradePlot(options, std::cout);
       case Mode::ScalingPlot: return runScalingPlot(options, std::cout);
+      case Mode::WritePattern: return runWritePattern(options, std::cout);
       case Mode::TradeLevels: return runTradeLevels(options, std::cout);
       case Mode::MakeAvatar: return runMakeAvatar(options, std::cout);
       case Mode::Batch: return runBatch(options, std::cout);

@@ -9,10 +9,12 @@ PACKAGES=(
   # engine
   libeigen3-dev libsuitesparse-dev libmetis-dev libtbb-dev libassimp-dev
   nlohmann-json3-dev libyaml-cpp-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
+  # DXF-AAMA pattern files: libdxflib in the engine; ezdxf, an independent DXF writer, for the tests
+  libdxflib-dev python3-ezdxf
   # renderer (headless EGL on Mesa llvmpipe, OSMesa fallback) and PNG output
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev libpng-dev
   # GUI
-  qt6-base-dev libqt6opengl6-dev qt6-charts-dev
+  qt6-base-dev libqt6opengl6-dev qt6-charts-dev qt6-svg-dev
   # tests
   libgtest-dev xvfb xauth
   # drape --batch --slurm and its test against a one-node Slurm (scripts/slurm-local.sh)

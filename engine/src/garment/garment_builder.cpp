@@ -266,6 +266,18 @@ Garment buildGarment(const Pattern& pattern, const MeshingOptions& options, Diag
     f0 += nf;
   }
   g.uvs = g.rest;
+  // The material frame's warp runs along a panel's grain line when the pattern gives one: its rest coordinates
+  // turn so that the grain becomes +x. The uvs keep the panel as cut.
+  for (int p = 0; p < panelCount; ++p) {
+    const auto& grain = pattern.panels[static_cast<size_t>(p)].grainLine;
+    if (!grain) continue;
+    const Eigen::Vector2d d = ((*grain)[1] - (*grain)[0]).normalized();
+    if (!d.allFinite()) continue;
+    Eigen::Matrix2d turn;
+    turn << d.x(), d.y(), -d.y(), d.x();
+    for (Eigen::Index v = 0; v < vertexTotal; ++v)
+      if (g.vertexPanel(v) == p) g.rest.row(v) = (turn * g.rest.row(v).transpose()).transpose();
+  }
 
   // Stitch pairs: rightWrong false pairs a's k-th point with b's (n-k)-th
   // (edges run in opposite directions along the seam), true pairs k with k.

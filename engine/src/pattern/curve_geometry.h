@@ -41,6 +41,7 @@ class CurveGeometry {
   // Circle only: centre and signed sweep angle (radians, > 0 counter-clockwise).
   const Eigen::Vector2d& circleCenter() const { return m_center; }
   double circleSweep() const { return m_sweep; }
+  double circleRadius() const { return m_radius; }
 
  private:
   double integrateSpeed(double t0, double t1) const;

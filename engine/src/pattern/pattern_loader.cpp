@@ -7,11 +7,13 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <set>
 #include <sstream>
 
 #include "drape/core/input_error.h"
+#include "drape/pattern/dxf_aama.h"
 #include "pattern/curvature_parser.h"
 #include "pattern/json_fields.h"
 #include "pattern/pattern_validation.h"
@@ -137,6 +139,59 @@ void readEdges(Panel& panel, const Json& edgesJson, const JsonFields& f, const F
   }
 }
 
+// A marking point: finite, and not absurdly far from the panel (kMaxPanelExtent metres from its corners' box).
+Eigen::Vector2d readMarkingPoint(const Json& value, const Panel& panel, const JsonFields& f, const std::string& what,
+                                 double unitsInMeter) {
+  const std::string where = "panel '" + panel.name + "'";
+  const Eigen::Vector2d p = f.readVec2(value, where, what);
+  Eigen::AlignedBox2d box;
+  for (const auto& v : panel.vertices) box.extend(v);
+  const double away = box.exteriorDistance(p) / unitsInMeter;
+  if (!(away <= detail::kMaxPanelExtent)) {
+    std::ostringstream distance;
+    distance << std::setprecision(4) << away;
+    f.fail(where, what + " " + value.dump() + " is " + distance.str() + " m from the panel's corners (at most " +
+                      Json(detail::kMaxPanelExtent).dump() + " m)");
+  }
+  return p;
+}
+
+// The optional markings "grainline", "notches" and "internal_lines" (docs/FORMATS.md "Pattern files").
+void readMarkings(Panel& panel, const Json& pj, const JsonFields& f, double unitsInMeter) {
+  const std::string where = "panel '" + panel.name + "'";
+  if (const auto it = pj.find("grainline"); it != pj.end()) {
+    if (!it->is_array() || it->size() != 2)
+      f.fail(where, "'grainline' must be [[x0, y0], [x1, y1]], got " + detail::describeType(*it));
+    const Eigen::Vector2d from = readMarkingPoint((*it)[0], panel, f, "'grainline' point 0", unitsInMeter);
+    const Eigen::Vector2d to = readMarkingPoint((*it)[1], panel, f, "'grainline' point 1", unitsInMeter);
+    Eigen::AlignedBox2d box;
+    for (const auto& v : panel.vertices) box.extend(v);
+    if ((to - from).norm() <= 1e-9 * box.diagonal().norm())
+      f.fail(where, "'grainline' has zero length (both points at " + (*it)[0].dump() + "): it gives no direction");
+    panel.grainLine = std::array<Eigen::Vector2d, 2>{from, to};
+  }
+  if (const auto it = pj.find("notches"); it != pj.end()) {
+    f.expectArray(*it, where, "'notches'");
+    for (size_t k = 0; k < it->size(); ++k)
+      panel.notches.push_back(
+          readMarkingPoint((*it)[k], panel, f, "'notches' point " + std::to_string(k), unitsInMeter));
+  }
+  if (const auto it = pj.find("internal_lines"); it != pj.end()) {
+    f.expectArray(*it, where, "'internal_lines'");
+    for (size_t k = 0; k < it->size(); ++k) {
+      const std::string line = "'internal_lines' line " + std::to_string(k);
+      const Json& lj = (*it)[k];
+      f.expectArray(lj, where, line);
+      if (lj.size() < 2)
+        f.fail(where, line + " must be a polyline of at least 2 points [[x, y], ...], got " + detail::describeType(lj));
+      std::vector<Eigen::Vector2d> points;
+      for (size_t j = 0; j < lj.size(); ++j)
+        points.push_back(readMarkingPoint(lj[j], panel, f, line + " point " + std::to_string(j), unitsInMeter));
+      panel.internalLines.push_back(std::move(points));
+    }
+  }
+}
+
 Panel readPanel(const std::string& name, const Json& pj, const JsonFields& f, const FileProperties& props,
                 Diagnostics& diagnostics) {
   Panel panel;
@@ -157,6 +212,7 @@ Panel readPanel(const std::string& name, const Json& pj, const JsonFields& f, co
   panel.translation = f.readVec3(f.member(pj, "translation", where), where, "'translation'");
   panel.rotationDeg = f.readVec3(f.member(pj, "rotation", where), where, "'rotation'");
   if (const auto label = pj.find("label"); label != pj.end()) panel.label = f.readString(*label, where, "'label'");
+  readMarkings(panel, pj, f, props.unitsInMeter);
   detail::validatePanelPlacement(panel, props.unitsInMeter, f);
   detail::validatePanelOutline(panel, props.unitsInMeter, f);
   return panel;
@@ -266,6 +322,7 @@ Pattern parsePattern(const std::string& jsonText, const std::string& source, Dia
 }
 
 Pattern loadPattern(const std::filesystem::path& file, Diagnostics* diagnostics) {
+  if (isDxfFile(file)) return readDxfAamaPattern(file, diagnostics);
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file.string() + ": cannot open the pattern file");
   std::ostringstream text;

@@ -3,6 +3,7 @@
 #include "core/json_reader.h"
 #include "drape/avatar/avatar_loader.h"
 #include "drape/core/input_error.h"
+#include "drape/pattern/dxf_aama.h"
 #include "drape/pattern/pattern_loader.h"
 #include "drape/scene/scene.h"
 #include "scene/scene_parts.h"
@@ -66,6 +67,7 @@ const std::vector<std::string>& sceneSettingSections() {
 }
 
 bool isPatternFile(const std::filesystem::path& file) {
+  if (isDxfFile(file)) return true;
   const nlohmann::json j = json::parseFile(file, json::DuplicateKeys::Allow);
   return j.is_object() && j.contains("pattern") && j.at("pattern").is_object();
 }
@@ -75,7 +77,10 @@ Scene loadScene(const SceneRequest& request) {
   scene.file = request.input;
   const std::string where = request.input.string();
   std::string text;
-  const nlohmann::json j = json::parseFile(request.input, json::DuplicateKeys::Allow, &text);
+  // A DXF-AAMA file is a bare pattern; anything else is JSON.
+  const nlohmann::json j = isDxfFile(request.input)
+                               ? nlohmann::json{{"pattern", nlohmann::json::object()}}
+                               : json::parseFile(request.input, json::DuplicateKeys::Allow, &text);
   if (!j.is_object()) throw InputError(where + ": expected a JSON object (a scene or a pattern)");
   const bool barePattern = j.contains("pattern") && j.at("pattern").is_object();
   // A repeated key would silently override a setting; a bare pattern gets the pattern loader's own check.

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "drape/core/input_error.h"
@@ -161,6 +162,26 @@ TEST(GarmentBuilder, StitchedEdgesShareTheLongerSideCount) {
   EXPECT_EQ(g.stitchPairs[s1.firstPair + 20], std::make_pair(g.edgeVertices[1][1].back(), g.edgeVertices[0][3].back()));
   EXPECT_NEAR(meshArea(g, 0), 0.12, 1e-12);
   EXPECT_NEAR(meshArea(g, 1), 0.05, 1e-12);
+}
+
+TEST(GarmentBuilder, GrainLineTurnsTheMaterialFrame) {
+  // Front's grain runs up its y axis, back has none: front's rest coordinates are its uvs turned by -90 degrees,
+  // so that the grain becomes the warp (+x); back's are its uvs.
+  Pattern pattern = frontBack();
+  pattern.panels[0].grainLine = std::array<Eigen::Vector2d, 2>{Eigen::Vector2d(25, 5), Eigen::Vector2d(25, 55)};
+  MeshingOptions options;
+  options.targetEdgeLength = 0.1;
+  const Garment g = buildGarment(pattern, options);
+  int checked = 0;
+  for (int v = 0; v < g.vertexCount(); ++v) {
+    const Eigen::Vector2d uv = g.uvs.row(v), rest = g.rest.row(v);
+    const Eigen::Vector2d expected = g.vertexPanel(v) == 0 ? Eigen::Vector2d(uv.y(), -uv.x()) : uv;
+    EXPECT_NEAR((rest - expected).norm(), 0.0, 1e-12) << "vertex " << v;
+    checked += g.vertexPanel(v) == 0;
+  }
+  EXPECT_GT(checked, 10);
+  // A turn keeps every triangle's area and orientation.
+  EXPECT_NEAR(meshArea(g, 0), 0.5 * 0.6, 1e-9);
 }
 
 TEST(GarmentBuilder, RejectsBadInput) {

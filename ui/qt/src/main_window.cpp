@@ -12,12 +12,16 @@
 #include <QScreen>
 #include <QScrollArea>
 #include <QScrollBar>
+#include <QSplitter>
+#include <QUndoCommand>
 #include <QStatusBar>
 #include <QStyle>
 #include <QToolBar>
 #include <QUndoStack>
 
 #include "drape/qt/fabric_panel.h"
+#include "drape/qt/pattern_sheet.h"
+#include "drape/qt/pattern_view.h"
 #include "drape/qt/scene_document.h"
 #include "drape/qt/scene_panel.h"
 #include "drape/qt/simulation_controller.h"
@@ -42,11 +46,22 @@ MainWindow::MainWindow(UserDialogs* dialogs, QWidget* parent) : QMainWindow(pare
   m_controller = new SimulationController(this);
   m_viewport = new ViewportWidget;
   m_viewport->setMinimumSize(320, 240);
-  setCentralWidget(m_viewport);
+  // The flat pattern beside the drape.
+  m_sheet = new PatternSheet(this);
+  m_patternPanel = new PatternPanel(m_sheet);
+  auto* centre = new QSplitter(Qt::Horizontal);
+  centre->setObjectName("CentreSplitter");
+  centre->addWidget(m_viewport);
+  centre->addWidget(m_patternPanel);
+  centre->setStretchFactor(0, 3);
+  centre->setStretchFactor(1, 2);
+  centre->setChildrenCollapsible(false);
+  setCentralWidget(centre);
   createActions();
   createDocks();
   createMenus();
   connectDocument();
+  connectPatternView();
   m_status = new QLabel;
   statusBar()->addPermanentWidget(m_status);
   updateActions();
@@ -92,6 +107,9 @@ void MainWindow::createActions() {
   m_screenshot = new QAction(tr("Save Screens&hot..."), this);
   m_screenshot->setShortcut(QKeySequence(tr("Ctrl+Alt+S")));
   connect(m_screenshot, &QAction::triggered, this, &MainWindow::onScreenshot);
+  m_savePattern = new QAction(tr("Save &Pattern As..."), this);
+  m_savePattern->setToolTip(tr("Write the pattern as edited: GarmentCode JSON, DXF-AAMA, or PDF and SVG at full scale"));
+  connect(m_savePattern, &QAction::triggered, this, &MainWindow::onSavePattern);
   m_quit = new QAction(tr("&Quit"), this);
   m_quit->setShortcut(QKeySequence::Quit);
   connect(m_quit, &QAction::triggered, this, &QWidget::close);
@@ -144,6 +162,7 @@ void MainWindow::createMenus() {
   file->addSeparator();
   file->addAction(m_save);
   file->addAction(m_saveAs);
+  file->addAction(m_savePattern);
   file->addSeparator();
   file->addAction(m_export);
   file->addAction(m_loadState);
@@ -362,6 +381,7 @@ void MainWindow::updateActions() {
   m_export->setEnabled(scene);
   m_loadState->setEnabled(scene);
   m_screenshot->setEnabled(scene);
+  m_savePattern->setEnabled(scene);
   m_openAvatar->setEnabled(scene);
 }
 

@@ -106,7 +106,7 @@ bool MainWindow::saveScreenshot(const std::filesystem::path& file) {
 
 void MainWindow::onOpen() {
   const QString file = QFileDialog::getOpenFileName(this, tr("Open scene or pattern"), QString(),
-                                                    tr("Scenes and patterns (*.json);;All files (*)"));
+                                                    tr("Scenes and patterns (*.json *.dxf);;All files (*)"));
   if (!file.isEmpty()) openFile(toPath(file));
 }
 
@@ -171,7 +171,7 @@ void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
   if (!event->mimeData()->hasUrls()) return;
   for (const QUrl& url : event->mimeData()->urls()) {
     const QString suffix = QFileInfo(url.toLocalFile()).suffix().toLower();
-    if (url.isLocalFile() && (suffix == "json" || kMeshSuffixes.contains(suffix))) {
+    if (url.isLocalFile() && (suffix == "json" || suffix == "dxf" || kMeshSuffixes.contains(suffix))) {
       event->acceptProposedAction();
       return;
     }
@@ -181,10 +181,11 @@ void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
 void MainWindow::dropEvent(QDropEvent* event) {
   // Scenes and patterns first, so a dropped scene plus avatar end up together.
   QList<QUrl> urls = event->mimeData()->urls();
-  std::stable_sort(urls.begin(), urls.end(), [](const QUrl& a, const QUrl& b) {
-    return QFileInfo(a.toLocalFile()).suffix().toLower() == "json" &&
-           QFileInfo(b.toLocalFile()).suffix().toLower() != "json";
-  });
+  auto isScene = [](const QUrl& url) {
+    const QString suffix = QFileInfo(url.toLocalFile()).suffix().toLower();
+    return suffix == "json" || suffix == "dxf";
+  };
+  std::stable_sort(urls.begin(), urls.end(), [&](const QUrl& a, const QUrl& b) { return isScene(a) && !isScene(b); });
   for (const QUrl& url : urls)
     if (url.isLocalFile()) openFile(toPath(url.toLocalFile()));
   event->acceptProposedAction();

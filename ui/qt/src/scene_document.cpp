@@ -7,7 +7,11 @@
 
 #include "drape/core/input_error.h"
 #include "drape/io/atomic_file.h"
+#include "drape/garment/garment_transfer.h"
+#include "drape/pattern/pattern_edit.h"
+#include "drape/pattern/pattern_writer.h"
 #include "drape/scene/pins.h"
+#include "drape/sim/scene_garment.h"
 
 namespace drape::qt {
 
@@ -23,6 +27,7 @@ SceneRequest SceneState::request() const {
 Scene buildScene(const SceneState& state) {
   if (state.input.empty()) throw InputError("no scene file given");
   Scene scene = loadScene(state.request());
+  if (state.pattern) scene.pattern = *state.pattern;
   for (const auto& [panel, preset] : state.panelPresets) {
     const std::string where = state.input.string() + ": panel_fabrics '" + panel + "'";
     if (scene.pattern.panelIndex(panel) < 0) throw InputError(where + ": the pattern has no panel of that name");
@@ -88,6 +93,22 @@ SceneDocument::Built SceneDocument::build(const SceneState& state) const {
   // The Simulation validates what the loaders cannot (pins that hold no vertex, meshing failures).
   std::optional<ResumeState> resume;
   if (m_resumeSource && keepsMesh(state)) resume = m_resumeSource();
+  if (m_resumeSource && m_garment && !keepsMesh(state) && keepsMeshSettings(state)) {
+    // An edited pattern: the running state carried to the new mesh through the pattern coordinates.
+    resume = m_resumeSource();
+    if (resume && resume->vertexCount == m_garment->vertexCount()) {
+      Diagnostics ignored;  // the Simulation below reports the same meshing warnings
+      const Garment next = buildSceneGarment(*built.scene, &ignored);
+      const Eigen::SparseMatrix<double, Eigen::RowMajor> t = garmentTransfer(*m_garment, next);
+      resume->positions = t * resume->positions;
+      resume->velocities = t * resume->velocities;
+      if (resume->previewPositions.rows() == m_garment->vertexCount())
+        resume->previewPositions = t * resume->previewPositions;
+      resume->vertexCount = next.vertexCount();
+    } else {
+      resume.reset();
+    }
+  }
   if (resume) {
     // The simulation continues in the stage it was in; the document's scene (what Save writes) keeps its own.
     Scene running = *built.scene;
@@ -100,6 +121,10 @@ SceneDocument::Built SceneDocument::build(const SceneState& state) const {
 }
 
 bool SceneDocument::keepsMesh(const SceneState& state) const {
+  return keepsMeshSettings(state) && state.pattern == m_state.pattern;
+}
+
+bool SceneDocument::keepsMeshSettings(const SceneState& state) const {
   if (!m_scene || state.input != m_state.input || state.avatarFile != m_state.avatarFile ||
       state.avatarUnits != m_state.avatarUnits)
     return false;
@@ -286,9 +311,39 @@ bool SceneDocument::setPanelFabric(const std::string& panel, const std::string& 
                 .arg(QString::fromStdString(panel), preset.empty() ? tr("default") : QString::fromStdString(preset)));
 }
 
+bool SceneDocument::setPattern(const Pattern& pattern, const QString& text) {
+  if (!m_scene) return false;
+  SceneState next = m_state;
+  Diagnostics diagnostics;
+  try {
+    next.pattern = std::make_shared<const Pattern>(validatedPattern(pattern, &diagnostics));
+  } catch (const InputError& e) {
+    emit errorOccurred(QString::fromStdString(e.what()));
+    return false;
+  }
+  if (!change(next, text)) return false;
+  QStringList warnings;
+  for (const auto& w : diagnostics.warnings()) warnings << QString::fromStdString(w);
+  if (!warnings.isEmpty()) emit warningsReported(warnings);
+  return true;
+}
+
+void SceneDocument::savePattern(const std::filesystem::path& file) const {
+  if (!m_scene) throw InputError(file.string() + ": no pattern to save");
+  drape::savePattern(m_scene->pattern, file);
+}
+
 void SceneDocument::save(const std::filesystem::path& file) {
   if (!m_scene) throw InputError(file.string() + ": no scene to save");
-  writeFileAtomically(file, sceneFileText(*m_scene, m_state, file));
+  if (m_state.pattern) {
+    // The edited pattern goes beside the scene, which names it.
+    Scene scene = *m_scene;
+    scene.patternFile = file.parent_path() / (file.stem().string() + ".pattern.json");
+    drape::savePattern(scene.pattern, scene.patternFile);
+    writeFileAtomically(file, sceneFileText(scene, m_state, file));
+  } else {
+    writeFileAtomically(file, sceneFileText(*m_scene, m_state, file));
+  }
   m_savePath = file;
   m_undo.setClean();
 }

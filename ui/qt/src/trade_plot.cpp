@@ -1,6 +1,8 @@
 #include "drape/qt/trade_plot.h"
 
 #include <QApplication>
+
+#include "offscreen_application.h"
 #include <QBuffer>
 #include <QByteArray>
 #include <QFont>
@@ -40,44 +42,6 @@ constexpr int kNoteHeight = 20;       // pixels kept under the chart for the not
 constexpr std::array<const char*, 10> kPalette = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
                                                   "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
 
-// Qt's debug and warning messages while the plot is drawn ("XDG_RUNTIME_DIR not set" on a headless machine) say
-// nothing the user can act on; critical and fatal ones still reach stderr.
-void quietQtMessages(QtMsgType type, const QMessageLogContext&, const QString& message) {
-  if (type == QtCriticalMsg || type == QtFatalMsg) std::fprintf(stderr, "drape: Qt: %s\n", qPrintable(message));
-}
-
-// Installs quietQtMessages for its lifetime.
-struct QuietQtMessages {
-  QtMessageHandler previous = qInstallMessageHandler(quietQtMessages);
-  ~QuietQtMessages() { qInstallMessageHandler(previous); }
-};
-
-// QChart is a QGraphicsWidget, which needs a QApplication (a QGuiApplication is not enough): one on the offscreen
-// platform when the process has none, null when it has one. The platform comes as an argument, not through
-// QT_QPA_PLATFORM, so that the environment of the process is left as it was.
-std::unique_ptr<QApplication> chartApplication(const std::filesystem::path& file) {
-  if (auto* existing = QCoreApplication::instance()) {
-    if (!qobject_cast<QApplication*>(existing))
-      throw InputError(file.string() + ": drawing the trade plot needs a QApplication, and this process has a " +
-                       existing->metaObject()->className());
-    if (QThread::currentThread() != existing->thread())
-      throw InputError(file.string() + ": the trade plot must be drawn on the application's thread");
-    return nullptr;
-  }
-  // QApplication takes the platform arguments out of argv and keeps argc and argv for its lifetime: they are static,
-  // and filled again for each application.
-  static char name[] = "drape";
-  static char platformFlag[] = "-platform";
-  static char offscreen[] = "offscreen";
-  static char* argv[4];
-  static int argc;
-  argc = 3;
-  argv[0] = name;
-  argv[1] = platformFlag;
-  argv[2] = offscreen;
-  argv[3] = nullptr;
-  return std::make_unique<QApplication>(argc, argv);
-}
 
 bool endsInPng(const std::filesystem::path& file) {
   std::string extension = file.extension().string();
@@ -214,7 +178,7 @@ void writeTradePlot(const std::vector<TradeSeries>& series, const std::string& t
                     int width, int height, const PlotAxes& axes) {
   validate(series, file, width, height);
   const QuietQtMessages quiet;
-  const auto application = chartApplication(file);  // declared before the scene: outlives it and the chart
+  const auto application = offscreenApplication(file, "the trade plot");  // declared before the scene: outlives it and the chart
   const PlotRanges ranges = plotRanges(series);
 
   QFont labelFont("DejaVu Sans");

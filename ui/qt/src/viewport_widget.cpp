@@ -1,6 +1,7 @@
 #include "drape/qt/viewport_widget.h"
 
 #include <QMouseEvent>
+#include <QPainter>
 #include <QOpenGLContext>
 #include <QSurfaceFormat>
 #include <QWheelEvent>
@@ -10,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "drape/qt/viewport_picking.h"
+#include "drape/render/palette.h"
 #include "drape/render/renderer.h"
 
 namespace drape::qt {
@@ -46,6 +48,13 @@ void ViewportWidget::setSnapshot(const Snapshot& snapshot) {
     m_hasFramed = true;
     setViewPreset(render::ViewPreset::ThreeQuarter);
   }
+  update();
+}
+
+void ViewportWidget::setHighlight(std::vector<int> panels, std::vector<std::vector<int>> vertexChains) {
+  m_highlightPanels = std::move(panels);
+  m_highlightChains = std::move(vertexChains);
+  m_snapshotDirty = true;
   update();
 }
 
@@ -100,7 +109,19 @@ void ViewportWidget::paintGL() {
   if (!m_renderer) return;
   try {
     if (m_snapshotDirty) {
-      m_renderer->upload(m_snapshot);
+      if (m_highlightPanels.empty()) {
+        m_renderer->upload(m_snapshot);
+      } else {
+        Snapshot shown = m_snapshot;
+        const int panels = shown.trianglePanel.size() ? shown.trianglePanel.maxCoeff() + 1 : 0;
+        for (int p = static_cast<int>(shown.panelColors.size()); p < panels; ++p)
+          shown.panelColors.push_back(render::defaultPanelColor(p));
+        const Eigen::Vector3f highlight(0.79f, 0.21f, 0.016f);  // linear RGB of the pattern view's orange
+        for (int p : m_highlightPanels)
+          if (p >= 0 && p < static_cast<int>(shown.panelColors.size()))
+            shown.panelColors[static_cast<size_t>(p)] = 0.35f * shown.panelColors[static_cast<size_t>(p)] + 0.65f * highlight;
+        m_renderer->upload(shown);
+      }
       m_snapshotDirty = false;
     }
     render::RenderOptions options = m_options;
@@ -109,6 +130,21 @@ void ViewportWidget::paintGL() {
     options.height = std::max(1, static_cast<int>(std::lround(height() * ratio)));
     m_renderer->draw(m_camera, options);
     m_lastError.clear();
+    if (!m_highlightChains.empty()) {
+      QPainter painter(this);
+      painter.setRenderHint(QPainter::Antialiasing);
+      QPen pen(QColor(230, 126, 34));
+      pen.setWidthF(3.0);
+      pen.setCapStyle(Qt::RoundCap);
+      painter.setPen(pen);
+      for (const std::vector<int>& chain : m_highlightChains) {
+        QPolygonF line;
+        for (int v : chain)
+          if (v >= 0 && v < m_snapshot.positions.rows())
+            if (const auto at = widgetPosition(m_snapshot.positions.row(v).transpose())) line << *at;
+        painter.drawPolyline(line);
+      }
+    }
   } catch (const std::exception& e) {
     m_lastError = QString::fromStdString(e.what());
   }
@@ -154,6 +190,7 @@ std::optional<QPointF> ViewportWidget::widgetPosition(const Eigen::Vector3d& poi
 
 void ViewportWidget::mousePressEvent(QMouseEvent* event) {
   m_lastMouse = event->position().toPoint();
+  m_pressPosition = m_lastMouse;
   m_dragButton = event->button();
   if (!m_garmentInteraction || event->button() != Qt::LeftButton) return;
   const QPointF at = event->position();
@@ -195,11 +232,13 @@ void ViewportWidget::mouseMoveEvent(QMouseEvent* event) {
   update();
 }
 
-void ViewportWidget::mouseReleaseEvent(QMouseEvent*) {
+void ViewportWidget::mouseReleaseEvent(QMouseEvent* event) {
   m_dragButton = Qt::NoButton;
   if (m_grabVertex >= 0) {
+    const int vertex = m_grabVertex;
     m_grabVertex = -1;
     emit dragChanged(-1, Eigen::Vector3d::Zero());
+    if ((event->position().toPoint() - m_pressPosition).manhattanLength() < 4) emit garmentClicked(vertex);
   }
 }
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "palette.h"
+#include "drape/render/palette.h"
 
 namespace drape::render {
 namespace {

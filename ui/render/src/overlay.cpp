@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "bitmap_font.h"
-#include "palette.h"
+#include "drape/render/palette.h"
 
 namespace drape::render {
 namespace {

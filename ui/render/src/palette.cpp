@@ -1,4 +1,4 @@
-#include "palette.h"
+#include "drape/render/palette.h"
 
 #include <algorithm>
 #include <cmath>

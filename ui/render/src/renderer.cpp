@@ -10,7 +10,7 @@
 #include "gl_functions.h"
 #include "mesh_buffers.h"
 #include "overlay.h"
-#include "palette.h"
+#include "drape/render/palette.h"
 #include "shader_program.h"
 
 namespace drape::render {

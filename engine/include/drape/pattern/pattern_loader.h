@@ -10,6 +10,7 @@
 
 namespace drape {
 
+// A .dxf file is read as DXF-AAMA (pattern/dxf_aama.h).
 Pattern loadPattern(const std::filesystem::path& file, Diagnostics* diagnostics = nullptr);
 
 // Same, from JSON text already in memory; source names the file in messages.

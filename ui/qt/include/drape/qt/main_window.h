@@ -20,6 +20,8 @@ class QPlainTextEdit;
 namespace drape::qt {
 
 class FabricPanel;
+class PatternPanel;
+class PatternSheet;
 class SceneDocument;
 class ScenePanel;
 class SimulationController;
@@ -35,13 +37,15 @@ class MainWindow : public QMainWindow {
   explicit MainWindow(UserDialogs* dialogs = nullptr, QWidget* parent = nullptr);
   ~MainWindow() override;
 
-  // Opens a scene or a bare pattern (.json), or an avatar mesh (.obj .glb .gltf .fbx .ply .stl) into the
+  // Opens a scene or a bare pattern (.json, or DXF-AAMA .dxf), or an avatar mesh (.obj .glb .gltf .fbx .ply .stl) into the
   // current scene. On error the dialog shows the message and the current scene stays. Returns success.
   bool openFile(const std::filesystem::path& file);
   // Writes the scene file atomically; false (with an error dialog) when it cannot.
   bool saveSceneAs(const std::filesystem::path& file);
   // Exports the current (draped) garment; the format follows the extension (.obj, .glb, .gltf, .ply, .stl).
   bool exportGarment(const std::filesystem::path& file);
+  // Writes the current pattern (as edited): .json GarmentCode, .dxf DXF-AAMA, .pdf or .svg at full scale.
+  bool savePatternAs(const std::filesystem::path& file);
   // Saves the viewport's current frame as a PNG (atomically).
   bool saveScreenshot(const std::filesystem::path& file);
   // Continues the scene from a garment state exported earlier (.obj; SceneDocument::loadGarmentState). On error
@@ -51,6 +55,8 @@ class MainWindow : public QMainWindow {
   SceneDocument* document() const { return m_document; }
   SimulationController* controller() const { return m_controller; }
   ViewportWidget* viewport() const { return m_viewport; }
+  PatternSheet* patternSheet() const { return m_sheet; }
+  PatternPanel* patternPanel() const { return m_patternPanel; }
   FabricPanel* fabricPanel() const { return m_fabricPanel; }
   ScenePanel* scenePanel() const { return m_scenePanel; }
   SimulationPanel* simulationPanel() const { return m_simulationPanel; }
@@ -91,12 +97,17 @@ class MainWindow : public QMainWindow {
   void onExport();
   void onLoadState();
   void onScreenshot();
+  void onSavePattern();
+  void connectPatternView();
+  void showSelectionIn3d();
 
   std::unique_ptr<UserDialogs> m_ownDialogs;
   UserDialogs* m_dialogs = nullptr;
   SceneDocument* m_document = nullptr;
   SimulationController* m_controller = nullptr;
   ViewportWidget* m_viewport = nullptr;
+  PatternSheet* m_sheet = nullptr;
+  PatternPanel* m_patternPanel = nullptr;
   ScenePanel* m_scenePanel = nullptr;
   FabricPanel* m_fabricPanel = nullptr;
   SimulationPanel* m_simulationPanel = nullptr;
@@ -114,6 +125,7 @@ class MainWindow : public QMainWindow {
   QAction* m_export = nullptr;
   QAction* m_loadState = nullptr;
   QAction* m_screenshot = nullptr;
+  QAction* m_savePattern = nullptr;
   QAction* m_quit = nullptr;
   QAction* m_undo = nullptr;
   QAction* m_redo = nullptr;

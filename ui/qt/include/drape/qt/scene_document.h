@@ -34,6 +34,8 @@ struct SceneState {
   // Placed position (metres, Garment::positions) of each vertexPins entry, same order: the pin's "at", which keeps
   // it on the same cloth point when the mesh is renumbered (PinSpec::at). Empty: indices only.
   std::vector<std::array<double, 3>> vertexPinPositions;
+  // The pattern as edited in the pattern view (validated), in place of the file's; null: the file's pattern.
+  std::shared_ptr<const Pattern> pattern;
 
   bool operator==(const SceneState&) const = default;
   SceneRequest request() const;
@@ -66,6 +68,12 @@ class SceneDocument : public QObject {
   bool setSettings(const std::map<std::string, std::string>& values, const QString& text);
   bool setFabricPreset(const std::string& preset);  // default fabric; drops fabric.* parameter overrides
   bool setPanelFabric(const std::string& panel, const std::string& preset);  // empty preset: the default
+  // Replaces the pattern by an edit of it (same panels, by name and order). It is checked as the loader checks a
+  // file (an invalid one emits errorOccurred with the loader's message and changes nothing). The running stage
+  // continues on the new mesh from its current state, carried over through the pattern coordinates.
+  bool setPattern(const Pattern& pattern, const QString& text);
+  // Writes the current pattern (as edited) as GarmentCode JSON, atomically; throws InputError.
+  void savePattern(const std::filesystem::path& file) const;
   // Pins garment vertex when no vertex pin holds it, else unpins it (one undoable command). A vertex held by
   // an edge or region pin of the file cannot be unpinned here: warningsReported says so, returns false.
   bool togglePin(int vertex);
@@ -88,7 +96,8 @@ class SceneDocument : public QObject {
   bool loadGarmentState(const std::filesystem::path& file);
 
   // Writes the scene file atomically (drape::writeFileAtomically) and marks the document clean; throws
-  // InputError when it cannot be written.
+  // InputError when it cannot be written. An edited pattern is written beside it (STEM.pattern.json), and the scene
+  // names that file.
   void save(const std::filesystem::path& file);
 
   bool hasScene() const { return m_scene != nullptr; }
@@ -123,6 +132,8 @@ class SceneDocument : public QObject {
   // Throws InputError. Continues from the resume source when state keeps the current garment mesh.
   Built build(const SceneState& state) const;
   bool keepsMesh(const SceneState& state) const;
+  // Same files and mesh settings, the pattern aside.
+  bool keepsMeshSettings(const SceneState& state) const;
   // Makes state current with its prebuilt scene and announces it.
   void install(const SceneState& state, Built built);
   // Rebuilds state (undo/redo); reports an error and keeps the current scene on failure.

@@ -11,6 +11,7 @@
 #include <QPointF>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "drape/render/camera.h"
 #include "drape/render/render_options.h"
@@ -55,6 +56,12 @@ class ViewportWidget : public QOpenGLWidget {
   // The vertex being dragged, -1 when none.
   int grabbedVertex() const { return m_grabVertex; }
 
+  // Linked selection: the panels drawn in the highlight colour, and chains of garment vertices (edges, seams) drawn
+  // as lines over the image.
+  void setHighlight(std::vector<int> panels, std::vector<std::vector<int>> vertexChains);
+  const std::vector<int>& highlightedPanels() const { return m_highlightPanels; }
+  const std::vector<std::vector<int>>& highlightedChains() const { return m_highlightChains; }
+
   // The error of the last paint (GL context too old, bad snapshot), empty when it drew.
   QString lastError() const { return m_lastError; }
 
@@ -64,6 +71,8 @@ class ViewportWidget : public QOpenGLWidget {
   void dragChanged(int vertex, Eigen::Vector3d target);
   // Ctrl+click on the garment: pin the vertex if it is free, unpin it if it is pinned.
   void pinToggleRequested(int vertex);
+  // A left click on the garment without dragging: the vertex under the cursor (for selection).
+  void garmentClicked(int vertex);
 
  protected:
   void initializeGL() override;
@@ -96,6 +105,9 @@ class ViewportWidget : public QOpenGLWidget {
   Eigen::Vector3d m_grabHit = Eigen::Vector3d::Zero();       // cursor ray on the drag plane at the press
   Eigen::Vector3d m_grabNormal = Eigen::Vector3d::UnitZ();   // drag plane normal (viewing direction at press)
   QString m_lastError;
+  QPoint m_pressPosition;
+  std::vector<int> m_highlightPanels;
+  std::vector<std::vector<int>> m_highlightChains;
 };
 
 }  // namespace drape::qt
