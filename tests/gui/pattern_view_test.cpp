@@ -96,6 +96,18 @@ class PatternViewTest : public ::testing::Test {
   std::shared_ptr<const Snapshot> placed;
 };
 
+// Pixels of the viewport's image of the highlight's orange hue (230, 126, 34 is 28 degrees), whatever the shading.
+int orangePixels(qt::ViewportWidget* viewport) {
+  const QImage image = viewport->grabFramebuffer();
+  int count = 0;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) {
+      const QColor c = image.pixelColor(x, y);
+      count += c.hsvHue() >= 15 && c.hsvHue() <= 40 && c.hsvSaturation() > 90 && c.value() > 50;
+    }
+  return count;
+}
+
 // The mean over the vertices of `of` of the distance to the nearest vertex of `to`.
 double meanNearest(const Eigen::MatrixX3d& of, const Eigen::MatrixX3d& to) {
   double sum = 0.0;
@@ -137,12 +149,15 @@ TEST_F(PatternViewTest, ShowsEveryPanelAtFullScaleAndEachSeamAsAPairOfColouredEd
 }
 
 TEST_F(PatternViewTest, SelectionIsLinkedBothWays) {
+  const int plain = orangePixels(window->viewport());
   // A click on a flat panel selects it and lights it in 3D.
   const int panel = 1;
   click(onView(panel, insidePanel(panel)));
   EXPECT_EQ(sheet()->selection().panel, panel);
   EXPECT_EQ(sheet()->selection().edge, -1);
   EXPECT_EQ(window->viewport()->highlightedPanels(), std::vector<int>{panel});
+  const int panelLit = orangePixels(window->viewport());
+  EXPECT_GT(panelLit, plain + 500) << "the selected panel is not drawn in the highlight colour";
   // A click on a seam's edge selects the seam: both its edges are drawn in 3D along their garment vertices.
   const Stitch& seam = pattern().stitches[0];
   click(edgeMiddle(seam.a.panel, seam.a.edge));
@@ -153,6 +168,9 @@ TEST_F(PatternViewTest, SelectionIsLinkedBothWays) {
             g.edgeVertices[static_cast<size_t>(seam.a.panel)][static_cast<size_t>(seam.a.edge)]);
   EXPECT_EQ(window->viewport()->highlightedChains()[1],
             g.edgeVertices[static_cast<size_t>(seam.b.panel)][static_cast<size_t>(seam.b.edge)]);
+  const int seamLit = orangePixels(window->viewport());
+  EXPECT_GT(seamLit, plain + 50) << "the selected seam is not drawn over the garment";
+  EXPECT_LT(seamLit, panelLit);
   // A click on the garment in 3D selects, in the pattern view, the panel of the vertex under the cursor.
   qt::ViewportWidget* viewport = window->viewport();
   const Snapshot& s = *window->currentSnapshot();

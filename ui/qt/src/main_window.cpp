@@ -55,6 +55,7 @@ MainWindow::MainWindow(UserDialogs* dialogs, QWidget* parent) : QMainWindow(pare
   centre->addWidget(m_patternPanel);
   centre->setStretchFactor(0, 3);
   centre->setStretchFactor(1, 2);
+  centre->setSizes({600, 400});
   centre->setChildrenCollapsible(false);
   setCentralWidget(centre);
   createActions();

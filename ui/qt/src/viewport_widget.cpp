@@ -119,7 +119,7 @@ void ViewportWidget::paintGL() {
         const Eigen::Vector3f highlight(0.79f, 0.21f, 0.016f);  // linear RGB of the pattern view's orange
         for (int p : m_highlightPanels)
           if (p >= 0 && p < static_cast<int>(shown.panelColors.size()))
-            shown.panelColors[static_cast<size_t>(p)] = 0.35f * shown.panelColors[static_cast<size_t>(p)] + 0.65f * highlight;
+            shown.panelColors[static_cast<size_t>(p)] = 0.2f * shown.panelColors[static_cast<size_t>(p)] + 0.8f * highlight;
         m_renderer->upload(shown);
       }
       m_snapshotDirty = false;
