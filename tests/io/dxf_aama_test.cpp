@@ -109,7 +109,8 @@ class DxfAama : public ::testing::Test {
         }
       }
       EXPECT_GT(signedArea(panelOutline(panel, 1.0)), 0.0) << "the outline must run counter-clockwise";
-      EXPECT_EQ(panel.translation, Eigen::Vector3d::Zero());
+      // Hung in front of the body, facing it (+z), unturned.
+      EXPECT_NEAR(panel.translation.z(), 0.35 * pattern.unitsInMeter, 1e-9);
       EXPECT_EQ(panel.rotationDeg, Eigen::Vector3d::Zero());
       ASSERT_EQ(panel.grainLine.has_value(), !w.at("grain").is_null());
       if (panel.grainLine) {
@@ -142,6 +143,28 @@ TEST_F(DxfAama, ReadsTwoPiecesInMillimetres) {
   expectPieces(pattern, expected(file));
   EXPECT_EQ(pattern.source, file.string());
   EXPECT_TRUE(diagnostics.warnings().empty()) << diagnostics.warnings().front();
+}
+
+TEST_F(DxfAama, PiecesHangApartInFrontOfTheBody) {
+  const Pattern pattern = readDxfAamaPattern(writeCase("two_pieces"));
+  ASSERT_EQ(pattern.panels.size(), 2u);
+  // Each piece's outline placed in metres: x and y ranges, in front of a body at the origin.
+  std::vector<Eigen::Vector4d> boxes;  // min x, max x, min y, max y
+  for (const Panel& p : pattern.panels) {
+    Eigen::Vector4d b(INFINITY, -INFINITY, INFINITY, -INFINITY);
+    for (const Eigen::Vector2d& q : p.vertices) {
+      const Eigen::Vector2d placed = (q + p.translation.head<2>()) / pattern.unitsInMeter;
+      b = Eigen::Vector4d(std::min(b[0], placed.x()), std::max(b[1], placed.x()), std::min(b[2], placed.y()),
+                          std::max(b[3], placed.y()));
+    }
+    EXPECT_GT(b[2], 0.3) << p.name;  // above the floor
+    EXPECT_LT(b[3], 2.0) << p.name;
+    boxes.push_back(b);
+  }
+  const bool apart = boxes[0][1] < boxes[1][0] || boxes[1][1] < boxes[0][0] || boxes[0][3] < boxes[1][2] ||
+                     boxes[1][3] < boxes[0][2];
+  EXPECT_TRUE(apart);
+  EXPECT_NEAR(0.5 * (std::min(boxes[0][0], boxes[1][0]) + std::max(boxes[0][1], boxes[1][1])), 0.0, 1e-9);
 }
 
 TEST_F(DxfAama, ReadsInchesFromTheUnitsText) {

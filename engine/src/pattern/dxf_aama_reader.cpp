@@ -13,6 +13,7 @@
 
 #include "drape/core/input_error.h"
 #include "drape/pattern/dxf_aama.h"
+#include "drape/pattern/edge_curve.h"
 #include "pattern/dxf_aama_piece.h"
 #include "pattern/dxf_scan.h"
 
@@ -211,6 +212,51 @@ std::vector<const DxfBlock*> pieceBlocks(const AamaCollector& c, const std::stri
   return pieces;
 }
 
+// DXF-AAMA places its pieces on a flat marker, not around a body: they are hung side by side, facing +z, in a plane
+// 35 cm in front of a body standing at the origin (as Drape's avatars do), in rows at most 2 m wide with their middle
+// at 1.1 m, so that the 3D view shows them apart before they are sewn. The pieces keep their own coordinates.
+void layOutInFront(Pattern& pattern) {
+  const double u = pattern.unitsInMeter, gap = 0.05 * u, rowWidth = 2.0 * u;
+  struct Box {
+    Eigen::Vector2d min, max;
+  };
+  std::vector<Box> boxes;
+  for (const Panel& p : pattern.panels) {
+    Box b{p.vertices.front(), p.vertices.front()};
+    for (const Eigen::Vector2d& q : panelOutline(p, 0.01 * u)) b.min = b.min.cwiseMin(q), b.max = b.max.cwiseMax(q);
+    boxes.push_back(b);
+  }
+  // Rows: left to right, each below the one before.
+  std::vector<std::vector<size_t>> rows(1);
+  double x = 0.0;
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    const double w = boxes[i].max.x() - boxes[i].min.x();
+    if (!rows.back().empty() && x + w > rowWidth) rows.emplace_back(), x = 0.0;
+    rows.back().push_back(i);
+    x += w + gap;
+  }
+  std::vector<double> heights;
+  double total = 0.0;
+  for (const auto& row : rows) {
+    double h = 0.0;
+    for (size_t i : row) h = std::max(h, boxes[i].max.y() - boxes[i].min.y());
+    heights.push_back(h);
+    total += h + (heights.size() > 1 ? gap : 0.0);
+  }
+  double top = 1.1 * u + 0.5 * total;
+  for (size_t r = 0; r < rows.size(); ++r) {
+    double width = -gap;
+    for (size_t i : rows[r]) width += boxes[i].max.x() - boxes[i].min.x() + gap;
+    double left = -0.5 * width;
+    for (size_t i : rows[r]) {
+      pattern.panels[i].translation =
+          Eigen::Vector3d(left - boxes[i].min.x(), top - heights[r] - boxes[i].min.y(), 0.35 * u);
+      left += boxes[i].max.x() - boxes[i].min.x() + gap;
+    }
+    top -= heights[r] + gap;
+  }
+}
+
 }  // namespace
 
 Pattern readDxfAamaPattern(const std::filesystem::path& file, Diagnostics* diagnostics) {
@@ -260,6 +306,7 @@ Pattern readDxfAamaPattern(const std::filesystem::path& file, Diagnostics* diagn
     pattern.panels.back().name = unique;
     taken.insert(unique);
   }
+  layOutInFront(pattern);
   return pattern;
 }
 

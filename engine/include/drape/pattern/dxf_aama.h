@@ -12,8 +12,8 @@
 //   layer 8   internal lines (LINE or polyline)
 //   TEXT / MTEXT "Piece Name: X" names the piece (else the block name); "UNITS: METRIC" (mm) or
 //             "UNITS: ENGLISH" (inches), else $INSUNITS, else millimetres with a warning.
-// Pieces keep the block's own coordinates: translation and rotation are zero, INSERT points are not applied,
-// and there are no stitches. Duplicate piece names get a suffix ("FRONT_2") and a warning.
+// Pieces keep the block's own coordinates (INSERT points are not applied) and hang side by side in front of a body
+// at the origin (Panel::translation; rotation zero); there are no stitches. Duplicate piece names get a suffix ("FRONT_2") and a warning.
 // Refused (InputError naming the file and the piece): unreadable, binary or truncated files, anything not DXF,
 // no pieces, a piece without boundary, a boundary that is not one closed loop, has fewer than 3 distinct points,
 // crosses itself or encloses no area, non-finite coordinates, pieces beyond the panel size limits.
