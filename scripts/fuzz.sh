@@ -18,6 +18,6 @@ fi
 BUILD_DIR="${DRAPE_FUZZ_BUILD_DIR:-build-fuzz}"
 cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang-14 \
   -DCMAKE_CXX_COMPILER=clang++-14 -DDRAPE_FUZZ=ON -DDRAPE_BUILD_GUI=OFF -DDRAPE_BUILD_TESTS=OFF "$@"
-cmake --build "$BUILD_DIR" -j "$(nproc)" --target drape_fuzz_pattern drape_fuzz_scene drape_fuzz_measurements \
+cmake --build "$BUILD_DIR" -j "$(nproc)" --target drape_fuzz_pattern drape_fuzz_dxf drape_fuzz_scene drape_fuzz_measurements \
   drape_fuzz_avatar
 ctest --test-dir "$BUILD_DIR" -L fuzz_slow --output-on-failure -j "$(nproc)"
