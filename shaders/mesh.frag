@@ -7,8 +7,9 @@ in vec3 v_panelColor;
 in vec3 v_domainColor;
 flat in float v_strain;
 in float v_contact;
+in vec2 v_uv;
 
-// 0 shaded, 1 wireframe, 2 strain, 3 domains, 4 contacts, 5 avatar
+// 0 shaded, 1 wireframe, 2 strain, 3 domains, 4 contacts, 5 avatar, 6 print
 uniform int u_mode;
 uniform bool u_edges;          // draw triangle edges
 uniform vec4 u_edgeColor;      // display RGB + opacity
@@ -22,6 +23,10 @@ uniform vec3 u_contactColor;   // linear
 uniform vec3 u_ramp[8];        // strain colour stops, display RGB, evenly spaced over u_strainRange
 uniform int u_rampCount;
 uniform vec2 u_strainRange;    // stretch fractions mapped to the first and last stop
+uniform sampler2D u_print;     // the fabric's print (display RGB), repeated
+uniform bool u_hasPrint;
+uniform float u_printWidth;    // metres of cloth per image width
+uniform float u_printAspect;   // image height / width
 
 out vec4 fragColor;
 
@@ -55,6 +60,10 @@ void main() {
     base = v_domainColor;
   } else if (u_mode == 4) {
     base = mix(u_neutralColor, u_contactColor, clamp(v_contact, 0.0, 1.0));
+  } else if (u_mode == 6) {
+    // The image's top row is t = 0 and the pattern's y points up: t runs against it.
+    vec2 st = vec2(v_uv.x, -v_uv.y / u_printAspect) / u_printWidth;
+    base = u_hasPrint ? toLinear(texture(u_print, st).rgb) : u_neutralColor;
   } else {
     base = u_neutralColor;
   }

@@ -7,6 +7,7 @@ layout(location = 3) in vec3 a_panelColor; // linear RGB
 layout(location = 4) in vec3 a_domainColor;// linear RGB
 layout(location = 5) in float a_strain;    // stretch fraction, or a large negative value when absent
 layout(location = 6) in float a_contact;   // 1 in contact, 0 otherwise
+layout(location = 7) in vec2 a_uv;         // pattern coordinates, metres (the print's frame)
 
 uniform mat4 u_viewProjection;
 uniform float u_inset;  // metres: drawn this far inside along the normal (colliders: the contact thickness)
@@ -18,6 +19,7 @@ out vec3 v_panelColor;
 out vec3 v_domainColor;
 flat out float v_strain;
 out float v_contact;
+out vec2 v_uv;
 
 void main() {
   float len = length(a_normal);
@@ -29,5 +31,6 @@ void main() {
   v_domainColor = a_domainColor;
   v_strain = a_strain;
   v_contact = a_contact;
+  v_uv = a_uv;
   gl_Position = u_viewProjection * vec4(position, 1.0);
 }

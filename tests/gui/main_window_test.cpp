@@ -201,8 +201,9 @@ TEST_F(MainWindowTest, SpeedAccuracySliderSaysWhatEachLevelCostsAndBuys) {
     EXPECT_TRUE(tip.contains(QString::fromStdString(level.summary).toHtmlEscaped())) << tip.toStdString();
     EXPECT_NE(level.summary.find(" mm from the reference"), std::string::npos) << level.summary;
     const long seconds = std::lround(level.wallSeconds);
-    if (level.wallSeconds >= 3)
+    if (level.wallSeconds >= 3) {
       EXPECT_NE(level.summary.find("about " + std::to_string(seconds) + " s"), std::string::npos) << level.summary;
+    }
     EXPECT_TRUE(tip.contains("h_max")) << tip.toStdString();
   }
 }

@@ -4,11 +4,13 @@
 // pattern written out.
 #include <QAction>
 #include <QComboBox>
+#include <QImage>
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QUndoStack>
 
 #include <cmath>
+#include <fstream>
 
 #include "drape/pattern/edge_curve.h"
 #include "drape/pattern/pattern_edit.h"
@@ -300,6 +302,39 @@ TEST_F(PatternViewTest, StrainMapCoversTheFlatPanels) {
   EXPECT_EQ(sheet()->map(), qt::SheetMap::Strain);
   EXPECT_EQ(sheet()->mapTriangleCount(), s.triangles.rows());
   EXPECT_GT(sheet()->strainScale(), 0.0);
+}
+
+TEST_F(PatternViewTest, AFabricPrintShowsOnTheGarmentAtItsStatedSize) {
+  // Stripes, red over blue, 600 x 600 pixels at 1200 dots per metre: a repeat of 50 cm.
+  QImage stripes(600, 600, QImage::Format_RGB32);
+  for (int y = 0; y < 600; ++y)
+    for (int x = 0; x < 600; ++x) stripes.setPixelColor(x, y, (y / 50) % 2 ? QColor(30, 40, 200) : QColor(210, 30, 30));
+  stripes.setDotsPerMeterX(1200);
+  stripes.setDotsPerMeterY(1200);
+  const std::filesystem::path file = std::filesystem::path(DRAPE_TEST_OUTPUT_DIR) / "pattern_view_print.png";
+  ASSERT_TRUE(stripes.save(QString::fromStdString(file.string())));
+  ASSERT_TRUE(window->showPrint(file));
+  const render::RenderOptions& options = window->viewport()->renderOptions();
+  EXPECT_EQ(options.mode, render::DisplayMode::Print);
+  EXPECT_NEAR(options.printWidth, 0.5, 1e-12);
+  // Both stripes show on the garment.
+  const QImage shot = window->viewport()->grabFramebuffer();
+  int red = 0, blue = 0;
+  for (int y = 0; y < shot.height(); ++y)
+    for (int x = 0; x < shot.width(); ++x) {
+      const QColor c = shot.pixelColor(x, y);
+      red += c.red() > c.blue() + 60 && c.red() > c.green() + 60;
+      blue += c.blue() > c.red() + 60 && c.blue() > c.green() + 60;
+    }
+  EXPECT_GT(red, 300);
+  EXPECT_GT(blue, 300);
+  // A file that is no image: the dialog names it, the print stays.
+  const std::filesystem::path bad = std::filesystem::path(DRAPE_TEST_OUTPUT_DIR) / "pattern_view_print.txt";
+  { std::ofstream(bad) << "not an image"; }
+  EXPECT_FALSE(window->showPrint(bad));
+  ASSERT_FALSE(dialogs.errors.empty());
+  EXPECT_NE(dialogs.errors.back().find("pattern_view_print.txt"), std::string::npos);
+  EXPECT_NEAR(window->viewport()->renderOptions().printWidth, 0.5, 1e-12);
 }
 
 TEST_F(PatternViewTest, SavedPatternLoadsBackAsEdited) {

@@ -119,6 +119,46 @@ TEST_F(RenderTest, ModesChangeTheGarmentOnly) {
     }
 }
 
+// Print mode lays the image on the garment by its pattern coordinates, upright and at its stated width: a tile of the
+// square's width whose top half is red and bottom half blue shows red over the square's top and blue over its bottom;
+// at half that width it repeats, so the quarter below the top is blue.
+TEST_F(RenderTest, PrintFollowsThePatternCoordinates) {
+  Snapshot square = flatSquare({0.5f, 0.5f, 0.5f});
+  square.uvs.resize(4, 2);
+  square.uvs << 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0;  // metres in the panel's frame (y up)
+  auto image = std::make_shared<render::Image>(64, 64);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      std::uint8_t* p = image->at(x, y);
+      p[0] = y < 32 ? 220 : 20, p[1] = 20, p[2] = y < 32 ? 20 : 220, p[3] = 255;
+    }
+  render::RenderOptions o = smallOptions();
+  o.showGround = false;
+  o.mode = DisplayMode::Print;
+  o.print = image;
+  o.printWidth = 1.0;
+  const auto camera = render::presetCamera(render::ViewPreset::Front, square.bounds(), 1.0);
+  const auto colourAt = [&](const render::Image& shot, double y) {
+    const Eigen::Vector4f clip = camera.projectionMatrix(double(shot.width) / shot.height) * camera.viewMatrix() *
+                                 Eigen::Vector4f(0.0f, float(y), 0.0f, 1.0f);
+    const int px = static_cast<int>((clip.x() / clip.w() + 1.0f) * 0.5f * shot.width);
+    const int py = static_cast<int>((1.0f - clip.y() / clip.w()) * 0.5f * shot.height);
+    const std::uint8_t* p = shot.at(px, py);
+    return Eigen::Vector3i(p[0], p[1], p[2]);
+  };
+  const render::Image whole = renderer().render(square, camera, o);
+  for (double y : {0.6, 0.9}) EXPECT_GT(colourAt(whole, y).x(), colourAt(whole, y).z() + 60) << "red at " << y;
+  for (double y : {0.1, 0.4}) EXPECT_GT(colourAt(whole, y).z(), colourAt(whole, y).x() + 60) << "blue at " << y;
+  o.printWidth = 0.5;
+  const render::Image half = renderer().render(square, camera, o);
+  EXPECT_GT(colourAt(half, 0.9).x(), colourAt(half, 0.9).z() + 60);
+  EXPECT_GT(colourAt(half, 0.6).z(), colourAt(half, 0.6).x() + 60);
+  // Without an image the garment is the neutral fabric, as in contacts mode without contacts.
+  o.print.reset();
+  const Eigen::Vector3i plain = colourAt(renderer().render(square, camera, o), 0.5);
+  EXPECT_LT(std::abs(plain.x() - plain.z()), 40) << plain.transpose();
+}
+
 TEST_F(RenderTest, BadSnapshotIsAClearError) {
   Snapshot s = flatSquare({0.5f, 0.5f, 0.5f});
   s.triangles(1, 2) = 7;

@@ -186,6 +186,7 @@ void MainWindow::createMenus() {
     connect(action, &QAction::triggered, this, [this, preset] { m_viewport->setViewPreset(preset); });
   }
   m_viewMenu->addAction(m_frameAll);
+  m_viewMenu->addAction(tr("Fabric &Print..."), this, &MainWindow::onShowPrint);
   m_viewMenu->addSeparator();
 
   QMenu* simulation = menuBar()->addMenu(tr("&Simulation"));
@@ -203,11 +204,13 @@ void MainWindow::createMenus() {
   bar->addWidget(new QLabel(tr(" Display ")));
   m_displayMode = new QComboBox;
   for (auto mode : {render::DisplayMode::Shaded, render::DisplayMode::Wireframe, render::DisplayMode::Strain,
-                    render::DisplayMode::Domains, render::DisplayMode::Contacts}) {
+                    render::DisplayMode::Domains, render::DisplayMode::Contacts, render::DisplayMode::Print}) {
     const auto name = render::displayModeName(mode);
     m_displayMode->addItem(QString::fromUtf8(name.data(), name.size()), static_cast<int>(mode));
   }
-  m_displayMode->setToolTip(tr("Display mode: shaded, wireframe, strain map, solver domains, contacts"));
+  m_displayMode->setToolTip(
+      tr("Display mode: shaded, wireframe, strain map, solver domains, contacts, the fabric's print (View > Fabric "
+         "Print...)"));
   bar->addWidget(m_displayMode);
   connect(m_displayMode, &QComboBox::activated, this, [this](int index) {
     render::RenderOptions options = m_viewport->renderOptions();

@@ -1,6 +1,9 @@
 // MainWindow: the pattern view beside the drape (linked selection, pattern edits, the maps on the flat panels,
 // writing the pattern out).
 #include <QAction>
+#include <QComboBox>
+#include <QImage>
+#include <cstring>
 #include <QFileDialog>
 #include <QTimer>
 #include <QUndoCommand>
@@ -107,6 +110,36 @@ bool MainWindow::savePatternAs(const std::filesystem::path& file) {
   }
   log(tr("info"), tr("Saved the pattern to %1").arg(QString::fromStdString(file.string())));
   return true;
+}
+
+bool MainWindow::showPrint(const std::filesystem::path& file) {
+  QImage image(QString::fromStdString(file.string()));
+  if (image.isNull()) {
+    showError(tr("Fabric print"), tr("%1: not an image Qt can read").arg(QString::fromStdString(file.string())));
+    return false;
+  }
+  image = image.convertToFormat(QImage::Format_RGBA8888);
+  auto print = std::make_shared<render::Image>(image.width(), image.height());
+  for (int y = 0; y < image.height(); ++y)
+    std::memcpy(print->at(0, y), image.constScanLine(y), static_cast<size_t>(image.width()) * 4);
+  render::RenderOptions options = m_viewport->renderOptions();
+  options.print = std::move(print);
+  const double dotsPerMetre = image.dotsPerMeterX() > 0 ? image.dotsPerMeterX() : 96.0 / 0.0254;
+  options.printWidth = image.width() / dotsPerMetre;
+  options.mode = render::DisplayMode::Print;
+  m_viewport->setRenderOptions(options);
+  m_displayMode->setCurrentIndex(m_displayMode->findData(static_cast<int>(render::DisplayMode::Print)));
+  log(tr("info"), tr("Print %1 on the garment: %2 x %3 cm per repeat")
+                      .arg(QString::fromStdString(file.filename().string()))
+                      .arg(100.0 * options.printWidth, 0, 'f', 1)
+                      .arg(100.0 * options.printWidth * image.height() / image.width(), 0, 'f', 1));
+  return true;
+}
+
+void MainWindow::onShowPrint() {
+  const QString file = QFileDialog::getOpenFileName(this, tr("Fabric print"), QString(),
+                                                    tr("Images (*.png *.jpg *.jpeg *.bmp);;All files (*)"));
+  if (!file.isEmpty()) showPrint(std::filesystem::path(file.toStdString()));
 }
 
 void MainWindow::onSavePattern() {

@@ -16,6 +16,7 @@ namespace drape::render {
   X(void, glBindBuffer, (GLenum, GLuint))                                                              \
   X(void, glBindFramebuffer, (GLenum, GLuint))                                                         \
   X(void, glBindRenderbuffer, (GLenum, GLuint))                                                        \
+  X(void, glBindTexture, (GLenum, GLuint))                                                             \
   X(void, glBindVertexArray, (GLuint))                                                                 \
   X(void, glBlendFuncSeparate, (GLenum, GLenum, GLenum, GLenum))                                       \
   X(void, glBlitFramebuffer, (GLint, GLint, GLint, GLint, GLint, GLint, GLint, GLint, GLbitfield, GLenum)) \
@@ -32,6 +33,7 @@ namespace drape::render {
   X(void, glDeleteProgram, (GLuint))                                                                   \
   X(void, glDeleteRenderbuffers, (GLsizei, const GLuint*))                                             \
   X(void, glDeleteShader, (GLuint))                                                                    \
+  X(void, glDeleteTextures, (GLsizei, const GLuint*))                                                  \
   X(void, glDeleteVertexArrays, (GLsizei, const GLuint*))                                              \
   X(void, glDepthFunc, (GLenum))                                                                       \
   X(void, glDepthMask, (GLboolean))                                                                    \
@@ -45,6 +47,8 @@ namespace drape::render {
   X(void, glGenBuffers, (GLsizei, GLuint*))                                                            \
   X(void, glGenFramebuffers, (GLsizei, GLuint*))                                                       \
   X(void, glGenRenderbuffers, (GLsizei, GLuint*))                                                      \
+  X(void, glGenTextures, (GLsizei, GLuint*))                                                           \
+  X(void, glGenerateMipmap, (GLenum))                                                                  \
   X(void, glGenVertexArrays, (GLsizei, GLuint*))                                                       \
   X(GLenum, glGetError, ())                                                                            \
   X(void, glGetIntegerv, (GLenum, GLint*))                                                             \
@@ -62,6 +66,8 @@ namespace drape::render {
   X(void, glRenderbufferStorage, (GLenum, GLenum, GLsizei, GLsizei))                                   \
   X(void, glRenderbufferStorageMultisample, (GLenum, GLsizei, GLenum, GLsizei, GLsizei))               \
   X(void, glShaderSource, (GLuint, GLsizei, const GLchar* const*, const GLint*))                       \
+  X(void, glTexImage2D, (GLenum, GLint, GLint, GLsizei, GLsizei, GLint, GLenum, GLenum, const void*))  \
+  X(void, glTexParameteri, (GLenum, GLenum, GLint))                                                    \
   X(void, glUniform1f, (GLint, GLfloat))                                                               \
   X(void, glUniform1i, (GLint, GLint))                                                                 \
   X(void, glUniform2f, (GLint, GLfloat, GLfloat))                                                      \

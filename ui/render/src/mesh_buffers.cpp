@@ -54,6 +54,7 @@ GarmentVertices buildGarmentVertices(const Snapshot& s) {
 
   GarmentVertices out;
   out.hasStrain = s.triangleStrain.size() == nf && nf > 0;
+  const bool withUvs = s.uvs.rows() == nv && nv > 0;
   out.data.resize(static_cast<size_t>(nf) * 3 * kGarmentFloats);
   const Eigen::MatrixX3f normals = vertexNormals(s.positions, s.triangles);
   float* p = out.data.data();
@@ -77,6 +78,8 @@ GarmentVertices buildGarmentVertices(const Snapshot& s) {
       for (int i = 0; i < 3; ++i) *p++ = domain(i);
       *p++ = strain;
       *p++ = s.vertexContact.size() && s.vertexContact(v) ? 1.0f : 0.0f;
+      *p++ = withUvs ? static_cast<float>(s.uvs(v, 0)) : 0.0f;
+      *p++ = withUvs ? static_cast<float>(s.uvs(v, 1)) : 0.0f;
     }
   }
   return out;

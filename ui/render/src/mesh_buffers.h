@@ -6,9 +6,10 @@
 
 namespace drape::render {
 
-// Per triangle corner, 17 floats: position (3, metres), smooth normal (3), barycentric corner (3),
-// panel colour (3, linear), domain colour (3, linear), strain (1; kNoStrain when absent), contact (1).
-inline constexpr int kGarmentFloats = 17;
+// Per triangle corner, 19 floats: position (3, metres), smooth normal (3), barycentric corner (3),
+// panel colour (3, linear), domain colour (3, linear), strain (1; kNoStrain when absent), contact (1),
+// pattern coordinates (2, metres; 0 without uvs).
+inline constexpr int kGarmentFloats = 19;
 inline constexpr float kNoStrain = -1e9f;
 
 struct GarmentVertices {

@@ -16,7 +16,7 @@
 namespace drape::render {
 namespace {
 
-enum ShaderMode { kShaded = 0, kWireframe = 1, kStrain = 2, kDomains = 3, kContacts = 4, kAvatar = 5 };
+enum ShaderMode { kShaded = 0, kWireframe = 1, kStrain = 2, kDomains = 3, kContacts = 4, kAvatar = 5, kPrint = 6 };
 
 ShaderMode shaderMode(DisplayMode mode) {
   switch (mode) {
@@ -25,6 +25,7 @@ ShaderMode shaderMode(DisplayMode mode) {
     case DisplayMode::Strain: return kStrain;
     case DisplayMode::Domains: return kDomains;
     case DisplayMode::Contacts: return kContacts;
+    case DisplayMode::Print: return kPrint;
   }
   return kShaded;
 }
@@ -57,6 +58,9 @@ struct Renderer::Impl {
   float avatarInset = 0.0f;  // metres, Snapshot::contactThickness
   double lastStrainMin = 0.0, lastStrainMax = 0.0;
   std::string rendererName;
+  GLuint printTexture = 0;
+  const Image* printUploaded = nullptr;  // the image in printTexture (RenderOptions::print keeps it alive)
+  std::shared_ptr<const Image> printHeld;
 
   void createBuffers();
   void ensureFramebuffer(int width, int height, int samples);
@@ -64,6 +68,8 @@ struct Renderer::Impl {
   void drawGround(const Eigen::Matrix4f& viewProjection, const Camera& camera, const RenderOptions& options);
   void drawMeshes(const Eigen::Matrix4f& viewProjection, const Camera& camera, const RenderOptions& options);
   void drawOverlay(const RenderOptions& options);
+  // Binds the print of options to texture unit 0, uploading it (with mipmaps, repeating) when it is a new image.
+  bool bindPrint(const RenderOptions& options);
 };
 
 Renderer::Renderer(const GlProcLoader& getProcAddress) : m_impl(std::make_unique<Impl>()) {
@@ -92,6 +98,7 @@ Renderer::~Renderer() {
   const GLuint arrays[] = {r.garmentVao, r.avatarVao, r.groundVao, r.emptyVao, r.overlayVao};
   gl.glDeleteVertexArrays(5, arrays);
   if (r.msFbo) gl.glDeleteFramebuffers(1, &r.msFbo);
+  if (r.printTexture) gl.glDeleteTextures(1, &r.printTexture);
   const GLuint renderbuffers[] = {r.msColor, r.msDepth};
   gl.glDeleteRenderbuffers(2, renderbuffers);
   r.meshProgram.reset();
@@ -106,9 +113,9 @@ void Renderer::Impl::createBuffers() {
   gl.glBindVertexArray(garmentVao);
   gl.glBindBuffer(GL_ARRAY_BUFFER, garmentVbo);
   const GLsizei stride = kGarmentFloats * sizeof(float);
-  const int sizes[] = {3, 3, 3, 3, 3, 1, 1};
+  const int sizes[] = {3, 3, 3, 3, 3, 1, 1, 2};
   size_t offset = 0;
-  for (GLuint i = 0; i < 7; ++i) {
+  for (GLuint i = 0; i < 8; ++i) {
     gl.glEnableVertexAttribArray(i);
     gl.glVertexAttribPointer(i, sizes[i], GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offset));
     offset += sizes[i] * sizeof(float);
@@ -315,6 +322,12 @@ void Renderer::Impl::drawMeshes(const Eigen::Matrix4f& viewProjection, const Cam
     const bool wire = options.mode == DisplayMode::Wireframe;
     gl.glUniform1i(p.uniform("u_mode"), shaderMode(options.mode));
     gl.glUniform1f(p.uniform("u_inset"), 0.0f);
+    const bool print = options.mode == DisplayMode::Print && bindPrint(options);
+    gl.glUniform1i(p.uniform("u_hasPrint"), print);
+    gl.glUniform1i(p.uniform("u_print"), 0);
+    gl.glUniform1f(p.uniform("u_printWidth"), float(options.printWidth > 0.0 ? options.printWidth : 0.25));
+    gl.glUniform1f(p.uniform("u_printAspect"),
+                   print ? float(options.print->height) / float(options.print->width) : 1.0f);
     gl.glUniform1i(p.uniform("u_edges"), wire || options.wireframeOverlay);
     if (wire)
       gl.glUniform4f(p.uniform("u_edgeColor"), 0.13f, 0.17f, 0.24f, 0.90f);
@@ -323,6 +336,28 @@ void Renderer::Impl::drawMeshes(const Eigen::Matrix4f& viewProjection, const Cam
     gl.glBindVertexArray(garmentVao);
     gl.glDrawArrays(GL_TRIANGLES, 0, garmentVertexCount);
   }
+}
+
+bool Renderer::Impl::bindPrint(const RenderOptions& options) {
+  const Image* image = options.print.get();
+  if (!image || image->empty() || image->pixels.size() != static_cast<size_t>(image->width) * image->height * 4)
+    return false;
+  if (!printTexture) gl.glGenTextures(1, &printTexture);
+  gl.glActiveTexture(GL_TEXTURE0);
+  gl.glBindTexture(GL_TEXTURE_2D, printTexture);
+  if (image != printUploaded) {
+    gl.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, image->width, image->height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                    image->pixels.data());
+    gl.glGenerateMipmap(GL_TEXTURE_2D);
+    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    printUploaded = image;
+    printHeld = options.print;  // the address stays this image's while it is held
+  }
+  return true;
 }
 
 void Renderer::Impl::drawOverlay(const RenderOptions& options) {

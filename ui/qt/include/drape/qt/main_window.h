@@ -44,6 +44,10 @@ class MainWindow : public QMainWindow {
   bool saveSceneAs(const std::filesystem::path& file);
   // Exports the current (draped) garment; the format follows the extension (.obj, .glb, .gltf, .ply, .stl).
   bool exportGarment(const std::filesystem::path& file);
+  // Lays a fabric print (an image file) on the garment, as cut: each panel carries it in its own pattern frame, the
+  // image as wide as its resolution says (PNG pHYs; 96 dpi when unstated); switches the display to print. On a file
+  // that cannot be read the dialog names it and nothing changes. Returns success.
+  bool showPrint(const std::filesystem::path& image);
   // Writes the current pattern (as edited): .json GarmentCode, .dxf DXF-AAMA, .pdf or .svg at full scale.
   bool savePatternAs(const std::filesystem::path& file);
   // Saves the viewport's current frame as a PNG (atomically).
@@ -98,6 +102,7 @@ class MainWindow : public QMainWindow {
   void onLoadState();
   void onScreenshot();
   void onSavePattern();
+  void onShowPrint();
   void connectPatternView();
   void showSelectionIn3d();
 

@@ -1,9 +1,12 @@
 #pragma once
 // What to draw and how: display mode, overlays, output size, background and anti-aliasing.
 #include <Eigen/Core>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+
+#include "drape/render/image.h"
 
 namespace drape::render {
 
@@ -13,10 +16,11 @@ enum class DisplayMode {
   Strain,     // per-triangle stretch heat map (Snapshot::triangleStrain) with a legend in %
   Domains,    // preview-solver partition colours (Snapshot::triangleDomain)
   Contacts,   // neutral fabric, vertices in contact (Snapshot::vertexContact) highlighted
+  Print,      // RenderOptions::print laid on the garment by its pattern coordinates (Snapshot::uvs), as cut
 };
 
 std::string_view displayModeName(DisplayMode mode);  // "shaded", "wireframe", ...
-// Parses "shaded|wireframe|strain|domains|contacts"; nullopt for anything else.
+// Parses "shaded|wireframe|strain|domains|contacts|print"; nullopt for anything else.
 std::optional<DisplayMode> parseDisplayMode(std::string_view name);
 
 struct RenderOptions {
@@ -33,6 +37,10 @@ struct RenderOptions {
   // snapshot's strain rounded up to a readable step (1, 2, 5 x 10^k %).
   double strainMin = 0.0;
   double strainMax = -1.0;
+  // Print mode: the fabric's print, repeated over every panel in its own pattern frame (x along the panel's x, the
+  // image's top towards the panel's +y), printWidth metres of cloth per image width. Without an image, neutral.
+  std::shared_ptr<const Image> print;
+  double printWidth = 0.25;
 };
 
 }  // namespace drape::render
