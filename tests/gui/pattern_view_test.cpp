@@ -9,6 +9,7 @@
 #include <QMouseEvent>
 #include <QUndoStack>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -173,22 +174,39 @@ TEST_F(PatternViewTest, SelectionIsLinkedBothWays) {
   const int seamLit = orangePixels(window->viewport());
   EXPECT_GT(seamLit, plain + 50) << "the selected seam is not drawn over the garment";
   EXPECT_LT(seamLit, panelLit);
-  // A click on the garment in 3D selects, in the pattern view, the panel of the vertex under the cursor.
+  // A click on the garment in 3D selects, in the pattern view, the panel under the cursor: inside the panel the
+  // panel alone, on its outline the edge, and on a sewn edge the seam.
   qt::ViewportWidget* viewport = window->viewport();
   const Snapshot& s = *window->currentSnapshot();
-  int picked = -1;
-  QPoint at;
-  for (int v = 0; v < g.vertexCount() && picked < 0; v += 7) {
+  std::vector<bool> outline(static_cast<size_t>(g.vertexCount()), false);
+  for (const auto& edges : g.edgeVertices)
+    for (const auto& chain : edges)
+      for (int v : chain) outline[static_cast<size_t>(v)] = true;
+  bool inside = false, onSeam = false;
+  for (int v = 0; v < g.vertexCount() && !(inside && onSeam); ++v) {
     const auto pos = viewport->widgetPosition(s.positions.row(v).transpose());
     if (!pos) continue;
     const int under = viewport->garmentVertexAt(*pos);
-    if (under >= 0 && g.vertexPanel(under) != sheet()->selection().panel) picked = under, at = pos->toPoint();
+    if (under < 0) continue;
+    const bool edgeVertex = outline[static_cast<size_t>(under)];
+    if (edgeVertex ? onSeam : inside) continue;
+    QTest::mouseClick(viewport, Qt::LeftButton, Qt::NoModifier, pos->toPoint());
+    QApplication::processEvents();
+    const qt::PatternSelection got = sheet()->selection();
+    EXPECT_EQ(got.panel, g.vertexPanel(under));
+    if (!edgeVertex) {
+      EXPECT_EQ(got.edge, -1);
+      inside = true;
+    } else {
+      ASSERT_GE(got.edge, 0);
+      const auto& chain = g.edgeVertices[static_cast<size_t>(got.panel)][static_cast<size_t>(got.edge)];
+      EXPECT_NE(std::find(chain.begin(), chain.end(), under), chain.end());
+      EXPECT_EQ(got.stitch, seamOfEdge(pattern(), got.panel, got.edge));
+      onSeam = got.stitch >= 0;
+    }
   }
-  ASSERT_GE(picked, 0);
-  QTest::mouseClick(viewport, Qt::LeftButton, Qt::NoModifier, at);
-  QApplication::processEvents();
-  EXPECT_EQ(sheet()->selection().panel, g.vertexPanel(viewport->garmentVertexAt(QPointF(at))));
-  EXPECT_EQ(sheet()->selection().stitch, -1);
+  EXPECT_TRUE(inside);
+  EXPECT_TRUE(onSeam);
 }
 
 TEST_F(PatternViewTest, DraggingAVertexReshapesTheGarmentAndTheDrapeCarriesOn) {

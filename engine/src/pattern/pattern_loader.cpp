@@ -317,7 +317,7 @@ Pattern parsePattern(const std::string& jsonText, const std::string& source, Dia
   for (const auto& [name, pj] : panelsJson.items()) panels.push_back(readPanel(name, pj, f, props, diag));
   pattern.panels = orderPanels(std::move(panels), patternJson, f, diag);
   readStitches(pattern, patternJson, f);
-  detail::warnStitchLengthMismatch(pattern, diag);
+  detail::checkStitchLengths(pattern, diag);
   return pattern;
 }
 

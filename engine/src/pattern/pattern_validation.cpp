@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <numeric>
 
+#include "drape/core/input_error.h"
 #include "drape/pattern/edge_curve.h"
 #include "pattern/curve_geometry.h"
 
@@ -148,19 +149,20 @@ void validatePanelPlacement(const Panel& panel, double unitsInMeter, const JsonF
                              formatNumber(kMaxPanelRotationDeg) + "]");
 }
 
-void warnStitchLengthMismatch(const Pattern& pattern, Diagnostics& diagnostics) {
+void checkStitchLengths(const Pattern& pattern, Diagnostics& diagnostics) {
   for (size_t k = 0; k < pattern.stitches.size(); ++k) {
     const Stitch& stitch = pattern.stitches[k];
     const Panel& pa = pattern.panels[stitch.a.panel];
     const Panel& pb = pattern.panels[stitch.b.panel];
     const double la = edgeLength(pa, stitch.a.edge), lb = edgeLength(pb, stitch.b.edge);
     const double relative = std::abs(la - lb) / std::max(la, lb);
-    if (relative > 0.05) {
-      diagnostics.warn(pattern.source + ": stitch " + std::to_string(k) + ": panel '" + pa.name + "' edge " +
-                       std::to_string(stitch.a.edge) + " (length " + formatNumber(la) + ") and panel '" + pb.name +
-                       "' edge " + std::to_string(stitch.b.edge) + " (length " + formatNumber(lb) + ") differ by " +
-                       formatNumber(100.0 * relative, 3) + "%");
-    }
+    const std::string what = pattern.source + ": stitch " + std::to_string(k) + ": panel '" + pa.name + "' edge " +
+                             std::to_string(stitch.a.edge) + " (length " + formatNumber(la) + ") and panel '" +
+                             pb.name + "' edge " + std::to_string(stitch.b.edge) + " (length " + formatNumber(lb) +
+                             ") differ by " + formatNumber(100.0 * relative, 3) + "%";
+    if (std::max(la, lb) > kMaxStitchLengthRatio * std::min(la, lb))
+      throw InputError(what + ": one is more than twice the other, too different to sew");
+    if (relative > 0.05) diagnostics.warn(what);
   }
 }
 

@@ -40,7 +40,10 @@ void validatePanelOutline(const Panel& panel, double unitsInMeter, const JsonFie
 // Throws InputError naming the panel when its translation or rotation is beyond the limits above.
 void validatePanelPlacement(const Panel& panel, double unitsInMeter, const JsonFields& fields);
 
-// Adds a warning to diagnostics for every stitch whose two edges differ in length by more than 5%.
-void warnStitchLengthMismatch(const Pattern& pattern, Diagnostics& diagnostics);
+// Adds a warning to diagnostics for every stitch whose two edges differ in length by more than 5% (eased and gathered
+// seams do), and refuses one where an edge is more than twice the other (kMaxStitchLengthRatio): that is no seam, a
+// pattern error. Throws InputError naming the stitch and both edges.
+inline constexpr double kMaxStitchLengthRatio = 2.0;
+void checkStitchLengths(const Pattern& pattern, Diagnostics& diagnostics);
 
 }  // namespace drape::detail

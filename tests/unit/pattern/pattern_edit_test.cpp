@@ -177,6 +177,10 @@ TEST(PatternEdit, ValidationSpeaksAsTheLoader) {
   const std::string message = refusal([&] { validatedPattern(crossed); });
   EXPECT_NE(message.find("edit.json"), std::string::npos) << message;
   EXPECT_NE(message.find("panel 'front'"), std::string::npos) << message;
+  // Front's top split near its end and the short piece sewn to back's 40 cm bottom: no seam, refused.
+  const Pattern split = insertVertex(p, 0, 2, 0.8);
+  const std::string seam = refusal([&] { validatedPattern(sewEdges(split, {0, 3}, {1, 0})); });
+  EXPECT_NE(seam.find("more than twice the other"), std::string::npos) << seam;
   // A valid edit passes and comes back equal.
   const Pattern moved = validatedPattern(moveVertex(p, 0, 2, {42, 31}));
   EXPECT_EQ(moved.panels[0].vertices[2], Eigen::Vector2d(42, 31));

@@ -3,6 +3,7 @@
 #include <QAction>
 #include <QComboBox>
 #include <QImage>
+#include <algorithm>
 #include <cstring>
 #include <QFileDialog>
 #include <QTimer>
@@ -10,6 +11,7 @@
 #include <QUndoStack>
 
 #include "drape/core/input_error.h"
+#include "drape/pattern/pattern_edit.h"
 #include "drape/qt/main_window.h"
 #include "drape/qt/pattern_print.h"
 #include "drape/qt/pattern_sheet.h"
@@ -50,7 +52,15 @@ void MainWindow::connectPatternView() {
   connect(m_viewport, &ViewportWidget::garmentClicked, this, [this](int vertex) {
     const auto garment = m_document->garment();
     if (!garment || vertex < 0 || vertex >= garment->vertexCount()) return;
-    m_sheet->setSelection({garment->vertexPanel(vertex), -1, -1});
+    // The panel under the cursor; on its outline (the nearest vertex of the hit triangle is an edge's), the edge, and
+    // the seam when the edge is sewn.
+    const int panel = garment->vertexPanel(vertex);
+    PatternSelection selection{panel, -1, -1};
+    const auto& edges = garment->edgeVertices[static_cast<size_t>(panel)];
+    for (size_t e = 0; e < edges.size() && selection.edge < 0; ++e)
+      if (std::find(edges[e].begin(), edges[e].end(), vertex) != edges[e].end()) selection.edge = static_cast<int>(e);
+    if (selection.edge >= 0) selection.stitch = seamOfEdge(m_document->scene().pattern, panel, selection.edge);
+    m_sheet->setSelection(selection);
     showSelectionIn3d();
   });
   connect(m_sheet, &PatternSheet::patternEdited, this,
