@@ -5,6 +5,7 @@
 
 #include <QApplication>
 #include <QCoreApplication>
+#include <QMouseEvent>
 #include <QSettings>
 #include <QTest>
 #include <cstdlib>
@@ -64,6 +65,15 @@ inline constexpr int kWaitScale = 10;
 #else
 inline constexpr int kWaitScale = 1;
 #endif
+
+// A mouse event sent straight to widget (QTest's mouse moves carry no buttons, so a drag needs these): a press or
+// release of the left button, or a move with `buttons` held.
+inline void sendMouse(QWidget* widget, QEvent::Type type, const QPointF& at, Qt::MouseButtons buttons,
+                      Qt::KeyboardModifiers modifiers = Qt::NoModifier) {
+  const Qt::MouseButton button = type == QEvent::MouseMove ? Qt::NoButton : Qt::LeftButton;
+  QMouseEvent event(type, at, widget->mapToGlobal(at), button, buttons, modifiers);
+  QApplication::sendEvent(widget, &event);
+}
 
 // Processes events until done() or timeoutMs (times kWaitScale) pass; returns done().
 inline bool waitUntil(const std::function<bool()>& done, int timeoutMs = 20000) {

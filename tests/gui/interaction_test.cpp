@@ -28,13 +28,6 @@ struct Trace {
   std::vector<StepReport> reports;
 };
 
-void sendMouse(QWidget* widget, QEvent::Type type, const QPointF& at, Qt::MouseButtons buttons,
-               Qt::KeyboardModifiers modifiers = Qt::NoModifier) {
-  const Qt::MouseButton button = type == QEvent::MouseMove ? Qt::NoButton : Qt::LeftButton;
-  QMouseEvent event(type, at, widget->mapToGlobal(at), button, buttons, modifiers);
-  QApplication::sendEvent(widget, &event);
-}
-
 class InteractionTest : public ::testing::Test {
  protected:
   void SetUp() override {

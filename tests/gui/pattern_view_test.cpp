@@ -26,12 +26,6 @@
 namespace drape::test {
 namespace {
 
-void sendMouse(QWidget* widget, QEvent::Type type, const QPoint& at, Qt::MouseButtons buttons) {
-  const Qt::MouseButton button = type == QEvent::MouseMove ? Qt::NoButton : Qt::LeftButton;
-  QMouseEvent event(type, QPointF(at), widget->mapToGlobal(QPointF(at)), button, buttons, Qt::NoModifier);
-  QApplication::sendEvent(widget, &event);
-}
-
 class PatternViewTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -81,9 +75,9 @@ class PatternViewTest : public ::testing::Test {
   }
   void drag(const QPoint& from, const QPoint& to) {
     QWidget* w = view()->viewport();
-    sendMouse(w, QEvent::MouseButtonPress, from, Qt::LeftButton);
-    for (int i = 1; i <= 5; ++i) sendMouse(w, QEvent::MouseMove, from + (to - from) * i / 5, Qt::LeftButton);
-    sendMouse(w, QEvent::MouseButtonRelease, to, Qt::NoButton);
+    sendMouse(w, QEvent::MouseButtonPress, QPointF(from), Qt::LeftButton);
+    for (int i = 1; i <= 5; ++i) sendMouse(w, QEvent::MouseMove, QPointF(from + (to - from) * i / 5), Qt::LeftButton);
+    sendMouse(w, QEvent::MouseButtonRelease, QPointF(to), Qt::NoButton);
     QApplication::processEvents();
   }
   // A panel and one of its unsewn edges.
