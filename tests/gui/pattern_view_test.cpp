@@ -314,6 +314,16 @@ TEST_F(PatternViewTest, StrainMapCoversTheFlatPanels) {
   EXPECT_EQ(sheet()->map(), qt::SheetMap::Strain);
   EXPECT_EQ(sheet()->mapTriangleCount(), s.triangles.rows());
   EXPECT_GT(sheet()->strainScale(), 0.0);
+  // Its scale is read beside the chooser, as the 3D legend gives it: the largest strain rounded up to 1, 2, 2.5 or
+  // 5 x 10^k.
+  double largest = 0.0;
+  for (Eigen::Index f = 0; f < s.triangleStrain.size(); ++f) largest = std::max(largest, s.triangleStrain(f));
+  EXPECT_GE(sheet()->strainScale(), largest);
+  EXPECT_TRUE(window->patternPanel()->legend().startsWith(" strain 0 - ")) << window->patternPanel()->legend().toStdString();
+  chooser->setCurrentIndex(chooser->findData(static_cast<int>(qt::SheetMap::None)));
+  emit chooser->activated(chooser->currentIndex());
+  EXPECT_EQ(sheet()->mapTriangleCount(), 0);
+  EXPECT_TRUE(window->patternPanel()->legend().isEmpty());
 }
 
 TEST_F(PatternViewTest, AFabricPrintShowsOnTheGarmentAtItsStatedSize) {

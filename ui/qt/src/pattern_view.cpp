@@ -3,6 +3,7 @@
 #include <QAction>
 #include <QComboBox>
 #include <QKeyEvent>
+#include <QLabel>
 #include <QMouseEvent>
 #include <QScrollBar>
 #include <QToolBar>
@@ -120,6 +121,11 @@ PatternPanel::PatternPanel(PatternSheet* sheet, QWidget* parent) : QWidget(paren
   m_map->addItem(tr("Contacts"), static_cast<int>(SheetMap::Contacts));
   m_map->setToolTip(tr("Colour the flat panels by the drape's strain or contacts, as in 3D"));
   bar->addWidget(m_map);
+  m_legend = new QLabel;
+  m_legend->setObjectName("PatternMapLegend");
+  bar->addWidget(m_legend);
+  // The sheet's map changes with each snapshot (setMap); the scale follows after it is drawn.
+  connect(sheet, &QGraphicsScene::changed, m_legend, [this] { m_legend->setText(legend()); });
   connect(m_map, &QComboBox::activated, this,
           [this](int index) { emit mapChosen(static_cast<SheetMap>(m_map->itemData(index).toInt())); });
   auto* layout = new QVBoxLayout(this);
@@ -127,6 +133,11 @@ PatternPanel::PatternPanel(PatternSheet* sheet, QWidget* parent) : QWidget(paren
   layout->setSpacing(0);
   layout->addWidget(bar);
   layout->addWidget(m_view);
+}
+
+QString PatternPanel::legend() const {
+  if (m_sheet->map() != SheetMap::Strain || m_sheet->strainScale() <= 0.0) return {};
+  return tr(" strain 0 - %1 %").arg(100.0 * m_sheet->strainScale(), 0, 'g', 3);
 }
 
 }  // namespace drape::qt

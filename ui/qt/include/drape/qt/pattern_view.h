@@ -4,7 +4,8 @@
 // on a handle moves an outline vertex or a curve's control point; a click selects a panel, an edge or a seam;
 // a double click on an edge inserts a vertex there; Delete removes the selected vertex; R and Shift+R turn the
 // selected panel on the sheet by 15 degrees. F fits the sheet to the view.
-// Tool bar: Fit, Sew (the next two edges clicked), Unpick (the selected seam), and the map shown on the panels.
+// Tool bar: Fit, Sew (the next two edges clicked), Unpick (the selected seam), the map shown on the panels and, for
+// the strain map, its scale (the 3D viewport's ramp, blue at 0 to red at the scale).
 #include <QGraphicsView>
 #include <QWidget>
 
@@ -12,6 +13,7 @@
 
 class QComboBox;
 class QAction;
+class QLabel;
 
 namespace drape::qt {
 
@@ -48,6 +50,8 @@ class PatternPanel : public QWidget {
   QAction* sewAction() const { return m_sew; }
   QAction* unpickAction() const { return m_unpick; }
   QComboBox* mapChooser() const { return m_map; }
+  // The strain map's scale ("strain 0 - 5 %"), shown while the sheet shows strain; empty otherwise.
+  QString legend() const;
 
  signals:
   void mapChosen(drape::qt::SheetMap map);
@@ -58,6 +62,7 @@ class PatternPanel : public QWidget {
   QAction* m_sew;
   QAction* m_unpick;
   QComboBox* m_map;
+  QLabel* m_legend;
 };
 
 }  // namespace drape::qt
