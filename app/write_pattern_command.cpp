@@ -19,9 +19,12 @@ int runWritePattern(const CliOptions& options, std::ostream& out) {
 #ifdef DRAPE_WITH_GUI
   qt::writePatternFile(scene.pattern, file);
 #else
-  if (isDxfFile(file)) writeDxfAamaPattern(scene.pattern, file);
-  else if (file.extension() == ".json") savePattern(scene.pattern, file);
-  else throw InputError(file.string() + ": this build has no GUI (Qt): a pattern is written as .json or .dxf only");
+  if (isDxfFile(file))
+    writeDxfAamaPattern(scene.pattern, file);
+  else if (file.extension() == ".json")
+    savePattern(scene.pattern, file);
+  else
+    throw InputError(file.string() + ": this build has no GUI (Qt): a pattern is written as .json or .dxf only");
 #endif
   out << "wrote " << file.string() << ": " << scene.pattern.panels.size() << " panels, "
       << scene.pattern.stitches.size() << " seams\n";

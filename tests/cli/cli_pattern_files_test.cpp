@@ -26,9 +26,8 @@ TEST(CliPatternFiles, InfoListsTheDxfPiecesByName) {
   std::filesystem::create_directories(kScratch);
   const auto file = kScratch / "two_pieces.dxf";
   const auto script = std::filesystem::path(DRAPE_TEST_DATA_DIR) / "dxf" / "write_aama.py";
-  const auto made = runProcess(python() + " " + quote(script.string()) + " " + quote(file.string()) +
-                                   " --case two_pieces",
-                               kScratch);
+  const auto made =
+      runProcess(python() + " " + quote(script.string()) + " " + quote(file.string()) + " --case two_pieces", kScratch);
   ASSERT_EQ(made.exitCode, 0) << "python3-ezdxf is needed (scripts/setup.sh): " << made.err;
   const auto r = drape("--info " + quote(file.string()));
   ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -77,11 +76,11 @@ TEST(CliPatternFiles, PrintsAtFullScaleWithACheckSquare) {
   EXPECT_NEAR(heightMm / std::stod(m[2]), mmPerUnit, 1e-3);
   // The check square: the one square <rect> of the drawing, scaled by its group's matrix.
   int squares = 0;
-  const std::regex group(R"re(<g [^>]*transform="matrix\(([-0-9.e]+),)re"), rect(R"re(<rect x="[-0-9.]+" y="[-0-9.]+" width="([0-9.]+)" height="([0-9.]+)"/>)re");
+  const std::regex group(R"re(<g [^>]*transform="matrix\(([-0-9.e]+),)re"),
+      rect(R"re(<rect x="[-0-9.]+" y="[-0-9.]+" width="([0-9.]+)" height="([0-9.]+)"/>)re");
   const std::regex element(R"(<g [^>]*>|<rect [^>]*/>)");
   double scale = 1.0;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), element);
-       it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), element); it != std::sregex_iterator(); ++it) {
     const std::string found = it->str();
     std::smatch e;
     if (std::regex_search(found, e, group)) scale = std::stod(e[1]);

@@ -2,13 +2,14 @@
 // ways with the 3D viewport, edits by mouse (move, insert and delete a vertex, sew, unpick) that re-mesh and carry
 // the running drape over, refusals with the loader's message, undo and redo, the maps on the flat panels, and the
 // pattern written out.
+#include "drape/qt/pattern_view.h"
+
 #include <QAction>
 #include <QComboBox>
 #include <QImage>
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QUndoStack>
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -18,7 +19,6 @@
 #include "drape/pattern/pattern_loader.h"
 #include "drape/qt/main_window.h"
 #include "drape/qt/pattern_sheet.h"
-#include "drape/qt/pattern_view.h"
 #include "drape/qt/simulation_controller.h"
 #include "drape/qt/viewport_widget.h"
 #include "gui_test_support.h"
@@ -238,7 +238,9 @@ TEST_F(PatternViewTest, DraggingAVertexReshapesTheGarmentAndTheDrapeCarriesOn) {
   EXPECT_LT(toDrape, 0.25 * toPlaced) << toDrape << " m from the drape, " << toPlaced << " m from the placed garment";
 
   window->undoAction()->trigger();
-  ASSERT_TRUE(waitUntil([&] { return sheet()->pattern().panels[static_cast<size_t>(panel)].vertices[static_cast<size_t>(vertex)] == from; }));
+  ASSERT_TRUE(waitUntil([&] {
+    return sheet()->pattern().panels[static_cast<size_t>(panel)].vertices[static_cast<size_t>(vertex)] == from;
+  }));
   EXPECT_EQ(pattern().panels[static_cast<size_t>(panel)].vertices[static_cast<size_t>(vertex)], from);
   window->redoAction()->trigger();
   EXPECT_EQ(pattern().panels[static_cast<size_t>(panel)].vertices[static_cast<size_t>(vertex)], moved);
@@ -261,8 +263,10 @@ TEST_F(PatternViewTest, AnEditThatBreaksThePatternIsRefusedWithTheLoadersMessage
   const int undoBefore = window->document()->undoStack()->count();
   drag(onView(panel, p.vertices[static_cast<size_t>(corner)]), onView(panel, across));
   ASSERT_FALSE(dialogs.errors.empty()) << "undo " << window->document()->undoStack()->count() << " vs " << undoBefore
-                                       << " corner now " << pattern().panels[panel].vertices[static_cast<size_t>(corner)].transpose()
-                                       << " aimed " << across.transpose() << " from " << p.vertices[static_cast<size_t>(corner)].transpose();
+                                       << " corner now "
+                                       << pattern().panels[panel].vertices[static_cast<size_t>(corner)].transpose()
+                                       << " aimed " << across.transpose() << " from "
+                                       << p.vertices[static_cast<size_t>(corner)].transpose();
   EXPECT_NE(dialogs.errors.back().find("panel '" + pattern().panels[panel].name + "'"), std::string::npos)
       << dialogs.errors.back();
   EXPECT_EQ(window->document()->undoStack()->count(), undoBefore);
@@ -319,7 +323,8 @@ TEST_F(PatternViewTest, StrainMapCoversTheFlatPanels) {
   double largest = 0.0;
   for (Eigen::Index f = 0; f < s.triangleStrain.size(); ++f) largest = std::max(largest, s.triangleStrain(f));
   EXPECT_GE(sheet()->strainScale(), largest);
-  EXPECT_TRUE(window->patternPanel()->legend().startsWith(" strain 0 - ")) << window->patternPanel()->legend().toStdString();
+  EXPECT_TRUE(window->patternPanel()->legend().startsWith(" strain 0 - "))
+      << window->patternPanel()->legend().toStdString();
   chooser->setCurrentIndex(chooser->findData(static_cast<int>(qt::SheetMap::None)));
   emit chooser->activated(chooser->currentIndex());
   EXPECT_EQ(sheet()->mapTriangleCount(), 0);

@@ -50,7 +50,7 @@ std::vector<Eigen::Vector2d> absolutePolygon(const Panel& p, const PanelEdge& e)
 
 // de Casteljau: the two halves of a Bezier control polygon split at t.
 std::pair<std::vector<Eigen::Vector2d>, std::vector<Eigen::Vector2d>> splitBezier(std::vector<Eigen::Vector2d> q,
-                                                                                    double t) {
+                                                                                  double t) {
   std::vector<Eigen::Vector2d> left{q.front()}, right{q.back()};
   while (q.size() > 1) {
     for (size_t i = 0; i + 1 < q.size(); ++i) q[i] = (1.0 - t) * q[i] + t * q[i + 1];
@@ -88,8 +88,7 @@ int seamOfEdge(const Pattern& pattern, int panel, int edge) {
 }
 
 Pattern moveVertex(const Pattern& pattern, int panel, int vertex, const Eigen::Vector2d& to) {
-  checkIndex(pattern, panel, vertex, pattern.panels[static_cast<size_t>(std::max(panel, 0))].vertices.size(),
-             "vertex");
+  checkIndex(pattern, panel, vertex, pattern.panels[static_cast<size_t>(std::max(panel, 0))].vertices.size(), "vertex");
   if (!to.allFinite()) throw InputError(where(pattern, panel) + " vertex " + std::to_string(vertex) + ": not finite");
   Pattern out = pattern;
   out.panels[static_cast<size_t>(panel)].vertices[static_cast<size_t>(vertex)] = to;
@@ -115,7 +114,8 @@ Pattern moveControlPoint(const Pattern& pattern, int panel, int edge, int contro
 Pattern insertVertex(const Pattern& pattern, int panel, int edge, double t) {
   checkIndex(pattern, panel, edge, pattern.panels[static_cast<size_t>(std::max(panel, 0))].edges.size(), "edge");
   if (!(t > 0.0 && t < 1.0))
-    throw InputError(where(pattern, panel) + " edge " + std::to_string(edge) + ": split point must lie inside the edge");
+    throw InputError(where(pattern, panel) + " edge " + std::to_string(edge) +
+                     ": split point must lie inside the edge");
   refuseSewn(pattern, panel, edge, "splitting the edge");
   Pattern out = pattern;
   Panel& p = out.panels[static_cast<size_t>(panel)];
@@ -147,11 +147,9 @@ Pattern insertVertex(const Pattern& pattern, int panel, int edge, double t) {
 }
 
 Pattern deleteVertex(const Pattern& pattern, int panel, int vertex) {
-  checkIndex(pattern, panel, vertex, pattern.panels[static_cast<size_t>(std::max(panel, 0))].vertices.size(),
-             "vertex");
+  checkIndex(pattern, panel, vertex, pattern.panels[static_cast<size_t>(std::max(panel, 0))].vertices.size(), "vertex");
   const Panel& p = pattern.panels[static_cast<size_t>(panel)];
-  if (p.vertices.size() <= 3)
-    throw InputError(where(pattern, panel) + ": a panel keeps at least three vertices");
+  if (p.vertices.size() <= 3) throw InputError(where(pattern, panel) + ": a panel keeps at least three vertices");
   int in = -1, outgoing = -1;
   for (size_t e = 0; e < p.edges.size(); ++e) {
     if (p.edges[e].end == vertex) in = static_cast<int>(e);

@@ -160,7 +160,9 @@ TEST(PatternEdit, SewingAndUnpicking) {
   ASSERT_EQ(sewn.stitches.size(), 3u);
   EXPECT_EQ(seamOfEdge(sewn, 1, 0), 2);
   EXPECT_FALSE(sewn.stitches[2].rightWrong);
-  EXPECT_NE(refusal([&] { sewEdges(sewn, {0, 0}, {1, 2}); }).find("'front' edge 0 is sewn (seam 2)"),
+  EXPECT_NE(refusal([&] {
+              sewEdges(sewn, {0, 0}, {1, 2});
+            }).find("'front' edge 0 is sewn (seam 2)"),
             std::string::npos);
   EXPECT_NE(refusal([&] { sewEdges(p, {0, 2}, {0, 2}); }).find("cannot be sewn to itself"), std::string::npos);
   EXPECT_NE(refusal([&] { insertVertex(p, 0, 1, 0.5); }).find("unpick the seam before splitting"), std::string::npos);

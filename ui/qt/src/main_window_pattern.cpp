@@ -2,13 +2,13 @@
 // writing the pattern out).
 #include <QAction>
 #include <QComboBox>
-#include <QImage>
-#include <algorithm>
-#include <cstring>
 #include <QFileDialog>
+#include <QImage>
 #include <QTimer>
 #include <QUndoCommand>
 #include <QUndoStack>
+#include <algorithm>
+#include <cstring>
 
 #include "drape/core/input_error.h"
 #include "drape/pattern/pattern_edit.h"
@@ -29,8 +29,10 @@ class LayoutCommand : public QUndoCommand {
   LayoutCommand(PatternSheet* sheet, SheetLayout before, SheetLayout after, const QString& text)
       : QUndoCommand(text), m_sheet(sheet), m_before(std::move(before)), m_after(std::move(after)) {}
   void redo() override {
-    if (m_first) m_first = false;
-    else m_sheet->setLayout(m_after);
+    if (m_first)
+      m_first = false;
+    else
+      m_sheet->setLayout(m_after);
   }
   void undo() override { m_sheet->setLayout(m_before); }
 

@@ -16,7 +16,9 @@ void quietQtMessages(QtMsgType type, const QMessageLogContext&, const QString& m
 }  // namespace
 
 QuietQtMessages::QuietQtMessages() : m_previous(qInstallMessageHandler(quietQtMessages)) {}
-QuietQtMessages::~QuietQtMessages() { qInstallMessageHandler(m_previous); }
+QuietQtMessages::~QuietQtMessages() {
+  qInstallMessageHandler(m_previous);
+}
 
 std::unique_ptr<QApplication> offscreenApplication(const std::filesystem::path& file, const char* what) {
   if (auto* existing = QCoreApplication::instance()) {

@@ -43,8 +43,8 @@ void printPattern(const Pattern& pattern, const std::filesystem::path& file) {
   sheet.setBackgroundBrush(Qt::white);
   sheet.setPattern(pattern);
   sheet.setCheckSquare(true);  // also lays the items out now
-  const QRectF content = (sheet.panelsRect() | sheet.checkSquareRect())
-                             .adjusted(-kMarginMm, -kMarginMm, kMarginMm, kMarginMm);
+  const QRectF content =
+      (sheet.panelsRect() | sheet.checkSquareRect()).adjusted(-kMarginMm, -kMarginMm, kMarginMm, kMarginMm);
   const bool pdf = lowerExtension(file) == ".pdf";
   writeFileAtomically(file, [&](const std::filesystem::path& temporary) {
     const QString path = QString::fromStdString(temporary.string());
@@ -78,10 +78,14 @@ void printPattern(const Pattern& pattern, const std::filesystem::path& file) {
 
 void writePatternFile(const Pattern& pattern, const std::filesystem::path& file) {
   const std::string ext = lowerExtension(file);
-  if (ext == ".json") savePattern(pattern, file);
-  else if (ext == ".dxf") writeDxfAamaPattern(pattern, file);
-  else if (isPrintFile(file)) printPattern(pattern, file);
-  else throw InputError(file.string() + ": a pattern is written as .json (GarmentCode), .dxf (DXF-AAMA), .pdf or .svg");
+  if (ext == ".json")
+    savePattern(pattern, file);
+  else if (ext == ".dxf")
+    writeDxfAamaPattern(pattern, file);
+  else if (isPrintFile(file))
+    printPattern(pattern, file);
+  else
+    throw InputError(file.string() + ": a pattern is written as .json (GarmentCode), .dxf (DXF-AAMA), .pdf or .svg");
 }
 
 }  // namespace drape::qt

@@ -16,10 +16,8 @@
 namespace drape::qt {
 namespace {
 
-constexpr double kGapMm = 60.0;         // between panels laid out side by side
-constexpr double kSampleMm = 5.0;       // curves are drawn as polylines of this step
-constexpr int kMapTag = 1;              // QGraphicsItem::data(0) of map items
-constexpr int kHandleTag = 2;           // ... and of editing handles
+constexpr double kGapMm = 60.0;    // between panels laid out side by side
+constexpr double kSampleMm = 5.0;  // curves are drawn as polylines of this step
 
 QColor displayColor(const Eigen::Vector3f& rgb) {
   return QColor::fromRgbF(std::clamp(rgb.x(), 0.0f, 1.0f), std::clamp(rgb.y(), 0.0f, 1.0f),
@@ -54,9 +52,13 @@ QColor seamColor(int stitch) {
   return QColor::fromHsvF(hue / 360.0, 0.8, 0.8);
 }
 
-PatternSheet::PatternSheet(QObject* parent) : QGraphicsScene(parent) { setBackgroundBrush(QColor(250, 250, 247)); }
+PatternSheet::PatternSheet(QObject* parent) : QGraphicsScene(parent) {
+  setBackgroundBrush(QColor(250, 250, 247));
+}
 
-double PatternSheet::millimetresPerUnit() const { return 1000.0 / m_pattern.unitsInMeter; }
+double PatternSheet::millimetresPerUnit() const {
+  return 1000.0 / m_pattern.unitsInMeter;
+}
 
 QPointF PatternSheet::toScene(int panel, const Eigen::Vector2d& p) const {
   const double k = millimetresPerUnit();
@@ -197,8 +199,7 @@ void PatternSheet::addPanelItems(int p) {
   auto* item = new PanelItem(this, p, panelColor(p));
   QPainterPath outline;
   const std::vector<Eigen::Vector2d> points = panelOutline(panel, kSampleMm / k);
-  for (size_t i = 0; i < points.size(); ++i)
-    i ? outline.lineTo(local(points[i])) : outline.moveTo(local(points[i]));
+  for (size_t i = 0; i < points.size(); ++i) i ? outline.lineTo(local(points[i])) : outline.moveTo(local(points[i]));
   outline.closeSubpath();
   item->setPath(outline);
   item->setTransformOriginPoint(outline.boundingRect().center());  // a turn on the sheet keeps the panel in place
@@ -223,8 +224,9 @@ void PatternSheet::addPanelItems(int p) {
     }
     auto* edge = new EdgeItem(this, p, e, stitch, path);
     edge->setParentItem(item);
-    edge->setToolTip(stitch >= 0 ? tr("'%1' edge %2, seam %3").arg(QString::fromStdString(panel.name)).arg(e).arg(stitch)
-                                 : tr("'%1' edge %2").arg(QString::fromStdString(panel.name)).arg(e));
+    edge->setToolTip(stitch >= 0
+                         ? tr("'%1' edge %2, seam %3").arg(QString::fromStdString(panel.name)).arg(e).arg(stitch)
+                         : tr("'%1' edge %2").arg(QString::fromStdString(panel.name)).arg(e));
   }
 
   const QRectF box = outline.boundingRect();
@@ -305,13 +307,12 @@ void PatternSheet::applySelection() {
     const int p = panel->panel();
     panel->setHighlighted(p == s.panel || (seam && (seam->a.panel == p || seam->b.panel == p)));
     for (QGraphicsItem* child : panel->childItems()) {
-      if (child->data(0).toInt() == kHandleTag) {
+      if (dynamic_cast<HandleItem*>(child)) {
         delete child;
         continue;
       }
       if (auto* edge = dynamic_cast<EdgeItem*>(child))
-        edge->setHighlighted((seam && edge->stitch() == s.stitch) ||
-                             (!seam && p == s.panel && edge->edge() == s.edge));
+        edge->setHighlighted((seam && edge->stitch() == s.stitch) || (!seam && p == s.panel && edge->edge() == s.edge));
     }
   }
   if (!m_editable || s.panel < 0 || s.panel >= static_cast<int>(m_panels.size())) return;
@@ -322,7 +323,6 @@ void PatternSheet::applySelection() {
   for (int v = 0; v < static_cast<int>(panel.vertices.size()); ++v) {
     auto* h = new HandleItem(this, s.panel, v, -1, -1);
     h->setParentItem(item);
-    h->setData(0, kHandleTag);
     h->setPos(panel.vertices[static_cast<size_t>(v)].x() * k, -panel.vertices[static_cast<size_t>(v)].y() * k);
   }
   for (int e = 0; e < static_cast<int>(panel.edges.size()); ++e) {
@@ -335,7 +335,6 @@ void PatternSheet::applySelection() {
       const Eigen::Vector2d abs = a + rel.x() * d + rel.y() * left;
       auto* h = new HandleItem(this, s.panel, -1, e, c);
       h->setParentItem(item);
-      h->setData(0, kHandleTag);
       h->setPos(abs.x() * k, -abs.y() * k);
     }
   }
@@ -350,7 +349,7 @@ void PatternSheet::setMap(SheetMap map, const Snapshot& snapshot) {
 void PatternSheet::refreshMap() {
   for (PanelItem* panel : m_panels)
     for (QGraphicsItem* child : panel->childItems())
-      if (child->data(0).toInt() == kMapTag) delete child;
+      if (dynamic_cast<MapItem*>(child)) delete child;
   m_strainScale = 0.0;
   const Snapshot& s = m_mapSnapshot;
   const Eigen::Index nf = s.triangles.rows(), nv = s.positions.rows();
@@ -393,9 +392,7 @@ void PatternSheet::refreshMap() {
     if (triangles[p].empty()) continue;
     auto* item = new MapItem(std::move(triangles[p]), std::move(colors[p]));
     item->setParentItem(m_panels[p]);
-    item->setData(0, kMapTag);
     item->setZValue(-1);  // under the edges and marks, over the panel's fill
-    item->setFlag(QGraphicsItem::ItemStacksBehindParent, false);
   }
 }
 

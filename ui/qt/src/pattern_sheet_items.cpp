@@ -62,7 +62,9 @@ QPainterPath EdgeItem::shape() const {
   return stroker.createStroke(path());
 }
 
-void EdgeItem::setHighlighted(bool on) { setPen(edgePen(m_stitch, on)); }
+void EdgeItem::setHighlighted(bool on) {
+  setPen(edgePen(m_stitch, on));
+}
 
 void EdgeItem::mousePressEvent(QGraphicsSceneMouseEvent* event) {
   m_sheet->itemClicked({m_panel, m_edge, m_stitch});
@@ -93,8 +95,10 @@ void HandleItem::paint(QPainter* painter, const QStyleOptionGraphicsItem*, QWidg
   pen.setCosmetic(true);
   painter->setPen(pen);
   painter->setBrush(isSelected() ? QColor(230, 126, 34) : isVertex() ? QColor(255, 255, 255) : QColor(52, 152, 219));
-  if (isVertex()) painter->drawRect(rect());
-  else painter->drawEllipse(rect());
+  if (isVertex())
+    painter->drawRect(rect());
+  else
+    painter->drawEllipse(rect());
 }
 
 void HandleItem::mousePressEvent(QGraphicsSceneMouseEvent* event) {
@@ -106,8 +110,10 @@ void HandleItem::mouseReleaseEvent(QGraphicsSceneMouseEvent* event) {
   QGraphicsRectItem::mouseReleaseEvent(event);
   if (pos() == m_pressed) return;
   const Eigen::Vector2d to = m_sheet->toPanel(m_panel, mapToScene(QPointF()));
-  if (isVertex()) m_sheet->vertexDragged(m_panel, m_vertex, to);
-  else m_sheet->controlDragged(m_panel, m_edge, m_control, to);
+  if (isVertex())
+    m_sheet->vertexDragged(m_panel, m_vertex, to);
+  else
+    m_sheet->controlDragged(m_panel, m_edge, m_control, to);
 }
 
 MapItem::MapItem(std::vector<QPolygonF> triangles, std::vector<QColor> colors)
