@@ -9,6 +9,7 @@
 #include <QImage>
 #include <QKeyEvent>
 #include <QMouseEvent>
+#include <QTreeWidget>
 #include <QUndoStack>
 #include <algorithm>
 #include <cmath>
@@ -19,6 +20,7 @@
 #include "drape/pattern/pattern_loader.h"
 #include "drape/qt/main_window.h"
 #include "drape/qt/pattern_sheet.h"
+#include "drape/qt/scene_panel.h"
 #include "drape/qt/simulation_controller.h"
 #include "drape/qt/viewport_widget.h"
 #include "gui_test_support.h"
@@ -153,6 +155,16 @@ TEST_F(PatternViewTest, SelectionIsLinkedBothWays) {
   EXPECT_EQ(sheet()->selection().panel, panel);
   EXPECT_EQ(sheet()->selection().edge, -1);
   EXPECT_EQ(window->viewport()->highlightedPanels(), std::vector<int>{panel});
+  // ... and in the Scene dock's list; a click on another panel's row there selects that one everywhere.
+  QTreeWidget* tree = window->scenePanel()->tree();
+  ASSERT_NE(tree->currentItem(), nullptr);
+  EXPECT_EQ(tree->currentItem()->text(0).toStdString(), pattern().panels[panel].name);
+  QTreeWidgetItem* row = tree->topLevelItem(0)->child(2);
+  tree->scrollToItem(row);
+  QTest::mouseClick(tree->viewport(), Qt::LeftButton, Qt::NoModifier, tree->visualItemRect(row).center());
+  EXPECT_EQ(sheet()->selection().panel, 2);
+  EXPECT_EQ(window->viewport()->highlightedPanels(), std::vector<int>{2});
+  click(onView(panel, insidePanel(panel)));
   const int panelLit = orangePixels(window->viewport());
   EXPECT_GT(panelLit, plain + 500) << "the selected panel is not drawn in the highlight colour";
   // A click on a seam's edge selects the seam: both its edges are drawn in 3D along their garment vertices.

@@ -17,6 +17,7 @@
 #include "drape/qt/pattern_sheet.h"
 #include "drape/qt/pattern_view.h"
 #include "drape/qt/scene_document.h"
+#include "drape/qt/scene_panel.h"
 #include "drape/qt/simulation_controller.h"
 #include "drape/qt/viewport_widget.h"
 
@@ -51,6 +52,10 @@ void MainWindow::connectPatternView() {
     showSelectionIn3d();
   });
   connect(m_sheet, &PatternSheet::selectionChanged, this, [this] { showSelectionIn3d(); });
+  connect(m_scenePanel, &ScenePanel::panelClicked, this, [this](int panel) {
+    m_sheet->setSelection({panel, -1, -1});
+    showSelectionIn3d();
+  });
   connect(m_viewport, &ViewportWidget::garmentClicked, this, [this](int vertex) {
     const auto garment = m_document->garment();
     if (!garment || vertex < 0 || vertex >= garment->vertexCount()) return;
@@ -110,6 +115,7 @@ void MainWindow::showSelectionIn3d() {
     }
   }
   m_viewport->setHighlight(std::move(panels), std::move(chains));
+  m_scenePanel->selectPanel(s.panel);
 }
 
 bool MainWindow::savePatternAs(const std::filesystem::path& file) {

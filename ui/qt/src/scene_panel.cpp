@@ -51,6 +51,9 @@ ScenePanel::ScenePanel(QWidget* parent) : QWidget(parent) {
   m_tree->setColumnCount(2);
   m_tree->setHeaderLabels({tr("Item"), tr("Fabric / details")});
   m_tree->header()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
+  connect(m_tree, &QTreeWidget::itemClicked, this, [this](QTreeWidgetItem* item) {
+    if (const QVariant panel = item->data(0, Qt::UserRole); panel.isValid()) emit panelClicked(panel.toInt());
+  });
   m_tree->setRootIsDecorated(true);
   layout->addWidget(m_tree, 1);
 
@@ -71,6 +74,11 @@ ScenePanel::ScenePanel(QWidget* parent) : QWidget(parent) {
           [this](const QString& units) { emit avatarUnitsChosen(units.toStdString()); });
 }
 
+void ScenePanel::selectPanel(int panel) {
+  QTreeWidgetItem* panels = m_tree->topLevelItemCount() ? m_tree->topLevelItem(0) : nullptr;
+  m_tree->setCurrentItem(panels && panel >= 0 && panel < panels->childCount() ? panels->child(panel) : nullptr);
+}
+
 void ScenePanel::showScene(const Scene& scene, const std::map<std::string, std::string>& panelPresets,
                            const std::vector<std::vector<int>>& heldVertices) {
   m_tree->clear();
@@ -78,6 +86,7 @@ void ScenePanel::showScene(const Scene& scene, const std::map<std::string, std::
   auto* panels = new QTreeWidgetItem(m_tree, {tr("Panels (%1)").arg(scene.pattern.panels.size())});
   for (const auto& panel : scene.pattern.panels) {
     auto* item = new QTreeWidgetItem(panels, {QString::fromStdString(panel.name)});
+    item->setData(0, Qt::UserRole, panels->childCount() - 1);
     auto* chooser = new QComboBox;
     chooser->addItem(tr("default (%1)").arg(QString::fromStdString(scene.fabric.name)), QString());
     for (const auto& [stem, display] : m_presetDisplayNames)
@@ -110,9 +119,9 @@ void ScenePanel::showScene(const Scene& scene, const std::map<std::string, std::
 
   auto* pins = new QTreeWidgetItem(m_tree, {tr("Pins (%1)").arg(scene.pins.size())});
   for (size_t i = 0; i < scene.pins.size(); ++i)
-    new QTreeWidgetItem(pins, {tr("pin %1").arg(i), describePin(scene.pins[i], i < heldVertices.size()
-                                                                                    ? heldVertices[i]
-                                                                                    : std::vector<int>{})});
+    new QTreeWidgetItem(pins,
+                        {tr("pin %1").arg(i),
+                         describePin(scene.pins[i], i < heldVertices.size() ? heldVertices[i] : std::vector<int>{})});
   pins->setExpanded(true);
 
   m_avatar->setText(scene.avatarFile.empty()

@@ -29,11 +29,15 @@ class ScenePanel : public QWidget {
   QTreeWidget* tree() const { return m_tree; }
   // The fabric chooser of a panel (first item: the default fabric), null for an unknown panel.
   QComboBox* panelFabricChooser(const std::string& panel) const;
+  // Makes panel p's row the current one (none for -1), without emitting panelClicked.
+  void selectPanel(int panel);
 
  signals:
   void panelFabricChosen(std::string panel, std::string preset);  // empty preset: the default fabric
   void openAvatarRequested();
   void avatarUnitsChosen(std::string units);
+  // A click on panel p's row (p indexes the pattern's panels): the selection shared with the pattern view and 3D.
+  void panelClicked(int panel);
 
  private:
   QTreeWidget* m_tree = nullptr;
