@@ -15,6 +15,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "drape/pattern/dxf_aama.h"
 #include "drape/pattern/edge_curve.h"
 #include "drape/pattern/pattern_edit.h"
 #include "drape/pattern/pattern_loader.h"
@@ -391,6 +392,35 @@ TEST_F(PatternViewTest, SavedPatternLoadsBackAsEdited) {
   EXPECT_EQ(loaded.stitches.size(), pattern().stitches.size());
   EXPECT_FALSE(window->savePatternAs(std::filesystem::path(DRAPE_TEST_OUTPUT_DIR) / "pattern_view_saved.txt"));
   EXPECT_NE(dialogs.errors.back().find("pattern_view_saved.txt"), std::string::npos);
+}
+
+// The DXF-AAMA flow: pieces from a garment CAD system open without seams, are sewn in the pattern view and saved as
+// GarmentCode JSON with their seams.
+TEST_F(PatternViewTest, DxfPiecesAreSewnInTheViewAndSavedAsGarmentCode) {
+  const std::filesystem::path dxf = std::filesystem::path(DRAPE_TEST_OUTPUT_DIR) / "pattern_view_pieces.dxf";
+  writeDxfAamaPattern(loadPattern(assetsDir() / "patterns" / "tshirt.json"), dxf);
+  ASSERT_TRUE(window->openFile(dxf)) << (dialogs.errors.empty() ? "" : dialogs.errors.back());
+  ASSERT_TRUE(waitUntil([&] { return sheet()->pattern().source == dxf.string() && sheet()->panelRect(5).isValid(); }));
+  view()->fitToView();
+  QApplication::processEvents();
+  ASSERT_EQ(pattern().panels.size(), 6u);
+  ASSERT_TRUE(pattern().stitches.empty());
+  // Sew the first edge of the first two pieces.
+  window->patternPanel()->sewAction()->trigger();
+  click(edgeMiddle(0, 0));
+  click(edgeMiddle(1, 0));
+  ASSERT_TRUE(waitUntil([&] { return pattern().stitches.size() == 1; }))
+      << (dialogs.errors.empty() ? "" : dialogs.errors.back());
+  EXPECT_EQ(sheet()->edgeColor(0, 0), sheet()->edgeColor(1, 0));
+  const std::filesystem::path json = std::filesystem::path(DRAPE_TEST_OUTPUT_DIR) / "pattern_view_sewn.json";
+  ASSERT_TRUE(window->savePatternAs(json));
+  const Pattern sewn = loadPattern(json);
+  ASSERT_EQ(sewn.stitches.size(), 1u);
+  EXPECT_EQ(sewn.stitches[0].a.panel, 0);
+  EXPECT_EQ(sewn.stitches[0].a.edge, 0);
+  EXPECT_EQ(sewn.stitches[0].b.panel, 1);
+  EXPECT_EQ(sewn.stitches[0].b.edge, 0);
+  EXPECT_EQ(sewn.panels[2].name, "l_sleeve_front");
 }
 
 }  // namespace
