@@ -56,7 +56,7 @@ void printPattern(const Pattern& pattern, const std::filesystem::path& file) {
       writer.setPageMargins(QMarginsF(0, 0, 0, 0));
       writer.setResolution(600);
       QPainter painter(&writer);
-      if (!painter.isActive()) throw InputError(file.string() + ": cannot be written");
+      if (!painter.isActive()) throw InputError("Qt cannot open it for drawing");
       sheet.render(&painter, QRectF(0, 0, writer.width(), writer.height()), content, Qt::IgnoreAspectRatio);
       painter.end();
     } else {
@@ -69,7 +69,7 @@ void printPattern(const Pattern& pattern, const std::filesystem::path& file) {
       generator.setViewBox(QRectF(QPointF(0, 0), size));
       generator.setResolution(static_cast<int>(kSvgPixelsPerMm * 25.4));
       QPainter painter(&generator);
-      if (!painter.isActive()) throw InputError(file.string() + ": cannot be written");
+      if (!painter.isActive()) throw InputError("Qt cannot open it for drawing");
       sheet.render(&painter, QRectF(QPointF(0, 0), size), content, Qt::IgnoreAspectRatio);
       painter.end();
     }
