@@ -192,21 +192,6 @@ Panel panelFromLoop(const Chain& loop, const std::string& name) {
   return panel;
 }
 
-// The outline with arcs sampled, and the edge each segment belongs to.
-std::vector<Eigen::Vector2d> sampledOutline(const Panel& panel, std::vector<int>* edgeOfSegment = nullptr) {
-  std::vector<Eigen::Vector2d> outline;
-  for (int e = 0; e < int(panel.edges.size()); ++e) {
-    const PanelEdge& edge = panel.edges[e];
-    const CurveGeometry geometry(panel.vertices[edge.start], panel.vertices[edge.end], edge.curve);
-    const int segments = edge.curve.type == CurveType::Straight ? 1 : kArcSegments;
-    for (int k = 0; k < segments; ++k) {
-      outline.push_back(geometry.point(double(k) / segments));
-      if (edgeOfSegment) edgeOfSegment->push_back(e);
-    }
-  }
-  return outline;
-}
-
 // The points of an open polyline, arcs sampled; a closed one ends where it starts.
 std::vector<Eigen::Vector2d> polylinePoints(const DxfPolyline& p) {
   std::vector<Eigen::Vector2d> points;
@@ -248,7 +233,7 @@ Panel buildAamaPanel(const DxfBlock& block, const std::string& name, double unit
 
   Panel panel = panelFromLoop(loop, name);
   std::vector<int> edgeOfSegment;
-  std::vector<Eigen::Vector2d> outline = sampledOutline(panel, &edgeOfSegment);
+  std::vector<Eigen::Vector2d> outline = sampledOutline(panel, kArcSegments, &edgeOfSegment);
   if (const auto contact = findSelfContact(outline))
     builder.fail("boundary crosses itself near " + formatPoint(contact->point) + " (boundary segments " +
                  std::to_string(edgeOfSegment[contact->segmentA]) + " and " +
@@ -267,7 +252,7 @@ Panel buildAamaPanel(const DxfBlock& block, const std::string& name, double unit
                  formatNumber(kMaxPanelExtent) + " m; are the units right?)");
   if (area < 0.0) {  // clockwise as drawn: the outside of the piece faces the viewer, so run it the other way
     panel = panelFromLoop(reversed(loop, true), name);
-    outline = sampledOutline(panel);
+    outline = sampledOutline(panel, kArcSegments);
   }
 
   int grainLines = 0;

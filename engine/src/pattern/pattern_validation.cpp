@@ -93,18 +93,23 @@ std::optional<OutlineContact> findSelfContact(const std::vector<Eigen::Vector2d>
   return std::nullopt;
 }
 
-void validatePanelOutline(const Panel& panel, double unitsInMeter, const JsonFields& fields) {
+std::vector<Eigen::Vector2d> sampledOutline(const Panel& panel, int segmentsPerCurve, std::vector<int>* edgeOfSegment) {
   std::vector<Eigen::Vector2d> outline;
-  std::vector<int> edgeOfSegment;
   for (int e = 0; e < int(panel.edges.size()); ++e) {
     const PanelEdge& edge = panel.edges[e];
     const CurveGeometry geometry(panel.vertices[edge.start], panel.vertices[edge.end], edge.curve);
-    const int segments = edge.curve.type == CurveType::Straight ? 1 : kCheckSegmentsPerCurve;
+    const int segments = edge.curve.type == CurveType::Straight ? 1 : segmentsPerCurve;
     for (int k = 0; k < segments; ++k) {
       outline.push_back(geometry.point(double(k) / segments));
-      edgeOfSegment.push_back(e);
+      if (edgeOfSegment) edgeOfSegment->push_back(e);
     }
   }
+  return outline;
+}
+
+void validatePanelOutline(const Panel& panel, double unitsInMeter, const JsonFields& fields) {
+  std::vector<int> edgeOfSegment;
+  const std::vector<Eigen::Vector2d> outline = sampledOutline(panel, kCheckSegmentsPerCurve, &edgeOfSegment);
   const std::string where = "panel '" + panel.name + "'";
   if (const auto contact = findSelfContact(outline)) {
     const int ea = edgeOfSegment[contact->segmentA], eb = edgeOfSegment[contact->segmentB];

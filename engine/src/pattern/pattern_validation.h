@@ -37,6 +37,11 @@ constexpr double kMaxPanelRotationDeg = 360.0;  // each Euler angle
 // smaller than kMinPanelArea or larger than kMaxPanelExtent (unitsInMeter: file units per metre).
 void validatePanelOutline(const Panel& panel, double unitsInMeter, const JsonFields& fields);
 
+// The closed outline with each curved edge sampled into segmentsPerCurve segments (a straight edge is one), from
+// edge 0's start, no point repeated; edgeOfSegment, when given, receives the edge of each segment.
+std::vector<Eigen::Vector2d> sampledOutline(const Panel& panel, int segmentsPerCurve,
+                                            std::vector<int>* edgeOfSegment = nullptr);
+
 // Throws InputError naming the panel when its translation or rotation is beyond the limits above.
 void validatePanelPlacement(const Panel& panel, double unitsInMeter, const JsonFields& fields);
 
