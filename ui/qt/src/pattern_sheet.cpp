@@ -342,7 +342,14 @@ void PatternSheet::applySelection() {
 
 void PatternSheet::setMap(SheetMap map, const Snapshot& snapshot) {
   m_map = map;
-  m_mapSnapshot = snapshot;
+  // What the map reads, not the avatar: this runs for every shown state while a map is on.
+  m_mapSnapshot = Snapshot();
+  m_mapSnapshot.positions = snapshot.positions;
+  m_mapSnapshot.triangles = snapshot.triangles;
+  m_mapSnapshot.uvs = snapshot.uvs;
+  m_mapSnapshot.trianglePanel = snapshot.trianglePanel;
+  m_mapSnapshot.triangleStrain = snapshot.triangleStrain;
+  m_mapSnapshot.vertexContact = snapshot.vertexContact;
   refreshMap();
 }
 

@@ -59,8 +59,7 @@ struct Renderer::Impl {
   double lastStrainMin = 0.0, lastStrainMax = 0.0;
   std::string rendererName;
   GLuint printTexture = 0;
-  const Image* printUploaded = nullptr;  // the image in printTexture (RenderOptions::print keeps it alive)
-  std::shared_ptr<const Image> printHeld;
+  std::shared_ptr<const Image> printUploaded;  // the image in printTexture, held so that it stays the same image
 
   void createBuffers();
   void ensureFramebuffer(int width, int height, int samples);
@@ -345,7 +344,7 @@ bool Renderer::Impl::bindPrint(const RenderOptions& options) {
   if (!printTexture) gl.glGenTextures(1, &printTexture);
   gl.glActiveTexture(GL_TEXTURE0);
   gl.glBindTexture(GL_TEXTURE_2D, printTexture);
-  if (image != printUploaded) {
+  if (options.print != printUploaded) {
     gl.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     gl.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, image->width, image->height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
                     image->pixels.data());
@@ -354,8 +353,7 @@ bool Renderer::Impl::bindPrint(const RenderOptions& options) {
     gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
     gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    printUploaded = image;
-    printHeld = options.print;  // the address stays this image's while it is held
+    printUploaded = options.print;
   }
   return true;
 }
