@@ -53,13 +53,14 @@ TEST(CliQuality, RenderOfADrapeCutShortFailsOnTheRestRequirement) {
 }
 
 TEST(CliQuality, ExplodedGarmentEndsDivergedWithExitStatus3) {
-  // The default t-shirt with the softest stretch the settings admit, no shear or bending stiffness, 1000 m/s^2 and
-  // 0.1 s steps: a triangle stretches past what any fabric holds. The run ends Diverged (exit 3), the line and the
-  // stats name the triangle, and the OBJ holds the state before it (its stretch computed here from the OBJ).
+  // The default t-shirt with the softest stretch the settings admit, no shear or bending stiffness, the most friction
+  // (which holds it on the body instead of letting it slide off), 1000 m/s^2 and 0.1 s steps: a triangle stretches
+  // past what any fabric holds. The run ends Diverged (exit 3), the line and the stats name the triangle, and the OBJ
+  // holds the state before it (its stretch computed here from the OBJ).
   const auto obj = kScratch / "exploded.obj", stats = kScratch / "exploded.json";
   auto r = drape("--simulate " + asset("scenes/default.json") +
                  " --solver drape --set fabric.stretch_warp=1e-3 --set fabric.stretch_weft=1e-3 --set fabric.shear=0"
-                 " --set fabric.bend_warp=0 --set fabric.bend_weft=0 --set sim.gravity=-1000"
+                 " --set fabric.bend_warp=0 --set fabric.bend_weft=0 --set fabric.friction=5 --set sim.gravity=-1000"
                  " --set solver.newton.h_max=0.1 --max-sim-time 0.5 -o " +
                  quote(obj.string()) + " --stats " + quote(stats.string()));
   ASSERT_EQ(r.exitCode, 3) << r.err << r.out;

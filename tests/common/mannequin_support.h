@@ -1,9 +1,11 @@
 #pragma once
 // What the mannequin's tests share (tests/unit/avatar/mannequin_test.cpp and the fits of the shipped and real bodies,
 // tests/slow/mannequin_fit_test.cpp): girths measured on slices of the mesh, its topology, the mannequin of a
-// measurement file (made once per file), and the checks every mannequin made from measurements passes.
+// measurement file (made once per file), and the checks every mannequin made from measurements passes, its
+// smoothness among them.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -17,6 +19,7 @@
 
 #include "drape/avatar/body_measurements.h"
 #include "drape/avatar/mannequin.h"
+#include "drape/geometry/triangle_mesh.h"
 
 namespace drape {
 
@@ -105,6 +108,95 @@ inline double thighGirth(const TriangleMesh& mesh, double h) {
   return girth;
 }
 
+// The steepest slope |dz/dy| of the front and back outlines of the side section x = x0, between heights lo and hi,
+// sampled every 2 mm. Where a ledge rings the body the outline steps (a slope of several); a body's own outline
+// between the knees and the waist stays below about 1.5 (mean_all's scan: 1.4).
+inline double steepestSideOutline(const TriangleMesh& mesh, double x0, double lo, double hi) {
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> segments;  // (y, z) ends
+  for (int f = 0; f < mesh.triangleCount(); ++f) {
+    std::vector<Eigen::Vector2d> ends;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d a = mesh.vertices.row(mesh.triangles(f, k));
+      const Eigen::Vector3d b = mesh.vertices.row(mesh.triangles(f, (k + 1) % 3));
+      if ((a.x() < x0) == (b.x() < x0)) continue;
+      const Eigen::Vector3d p = a + (x0 - a.x()) / (b.x() - a.x()) * (b - a);
+      ends.emplace_back(p.y(), p.z());
+    }
+    if (ends.size() == 2) segments.emplace_back(ends[0], ends[1]);
+  }
+  constexpr double kStep = 0.002;
+  double steepest = 0.0, lastFront = 0.0, lastBack = 0.0;
+  bool haveLast = false;
+  for (double y = lo; y <= hi; y += kStep) {
+    double front = -1e9, back = 1e9;
+    for (const auto& [a, b] : segments) {
+      if ((a.x() < y) == (b.x() < y)) continue;
+      const double z = a.y() + (y - a.x()) / (b.x() - a.x()) * (b.y() - a.y());
+      front = std::max(front, z), back = std::min(back, z);
+    }
+    const bool have = front > -1e8;
+    if (have && haveLast)
+      steepest = std::max({steepest, std::abs(front - lastFront) / kStep, std::abs(back - lastBack) / kStep});
+    haveLast = have, lastFront = front, lastBack = back;
+  }
+  return steepest;
+}
+
+// The +x arm's girths every centimetre along its axis, from the shoulder end to the fingertips: the hulls of
+// sections perpendicular to the principal axis of the vertices beyond x = xFrom (points within 8 cm of the axis).
+inline std::vector<double> armGirths(const TriangleMesh& mesh, double xFrom) {
+  std::vector<Eigen::Vector3d> arm;
+  for (int i = 0; i < mesh.vertexCount(); ++i)
+    if (mesh.vertices(i, 0) > xFrom) arm.emplace_back(mesh.vertices.row(i));
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const auto& p : arm) centre += p / static_cast<double>(arm.size());
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (const auto& p : arm) scatter += (p - centre) * (p - centre).transpose();
+  Eigen::Vector3d axis = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(scatter).eigenvectors().col(2);
+  if (axis.x() < 0) axis = -axis;
+  double first = 1e9, last = -1e9;
+  for (const auto& p : arm) first = std::min(first, (p - centre).dot(axis)), last = std::max(last, (p - centre).dot(axis));
+  const Eigen::Vector3d e1 = axis.cross(Eigen::Vector3d::UnitZ()).normalized(), e2 = axis.cross(e1);
+  std::vector<double> girths;
+  for (double s = first + 0.01; s < last - 0.005; s += 0.01) {
+    const Eigen::Vector3d origin = centre + s * axis;
+    std::map<std::pair<int, int>, Point2> crossings;  // one point per crossed edge
+    for (int f = 0; f < mesh.triangleCount(); ++f) {
+      for (int k = 0; k < 3; ++k) {
+        const int i = mesh.triangles(f, k), j = mesh.triangles(f, (k + 1) % 3);
+        const Eigen::Vector3d a = mesh.vertices.row(i), b = mesh.vertices.row(j);
+        const double da = (a - origin).dot(axis), db = (b - origin).dot(axis);
+        if ((da < 0) == (db < 0)) continue;
+        const Eigen::Vector3d r = a + da / (da - db) * (b - a) - origin;
+        if (r.norm() < 0.08) crossings.emplace(std::minmax(i, j), Point2(r.dot(e1), r.dot(e2)));
+      }
+    }
+    std::vector<Point2> points;
+    for (const auto& [edge, point] : crossings) points.push_back(point);
+    girths.push_back(hullPerimeter(points));
+  }
+  return girths;
+}
+
+// No ledge where the torso meets the thighs, and no rings along the arms: the side outlines through the thighs
+// (a third to three quarters of the hip radius out) stay smooth from 15 cm below the crotch to the waist, and the
+// arm's girth falls steadily from 20 % of its length to 85 % (the hand: beyond), rising nowhere by more than 2 mm
+// from one centimetre to the next.
+inline void expectSmoothMannequin(const TriangleMesh& mesh, const BodyMeasurements& m) {
+  const MannequinLevels levels = mannequinLevels(m);
+  const double hipRadius = m.hips / (2.0 * 3.141592653589793);
+  for (const double fraction : {0.3, 0.45, 0.6, 0.75}) {
+    const double steepest = steepestSideOutline(mesh, fraction * hipRadius, levels.crotch - 0.15, levels.waist);
+    EXPECT_LT(steepest, 2.0) << "side section at " << fraction * hipRadius << " m";
+  }
+  const std::vector<double> girths = armGirths(mesh, 0.5 * m.shoulderWidth + 0.05);
+  ASSERT_GT(girths.size(), 30u);
+  double largestRise = 0.0;
+  for (size_t i = girths.size() / 5; i + 1 < girths.size() * 85 / 100; ++i)
+    largestRise = std::max(largestRise, girths[i + 1] - girths[i]);
+  EXPECT_LT(largestRise, 0.002) << "arm girth";
+}
+
 struct Topology {
   bool everyEdgeTwiceOpposite = true;  // each directed edge once, and its reverse once
   int eulerCharacteristic = 0;
@@ -179,6 +271,7 @@ inline void expectValidMannequin(const std::filesystem::path& file) {
   EXPECT_NEAR(torsoGirth(mesh, levels.waist), m.waist, tolerance) << "waist";
   EXPECT_NEAR(torsoGirth(mesh, levels.hips), m.hips, tolerance) << "hips";
   EXPECT_NEAR(thighGirth(mesh, levels.crotch), m.thigh, tolerance) << "thigh";
+  expectSmoothMannequin(mesh, m);
   std::printf(
       "[mannequin] %s: %d triangles, volume %.4f m^3, height %.4f m; girths (cm) bust %.2f/%.2f "
       "underbust %.2f/%.2f waist %.2f/%.2f hips %.2f/%.2f thigh %.2f/%.2f\n",

@@ -253,12 +253,13 @@ TEST_F(SimulationControllerTest, HandOverAndRestAreLoggedAsInformation) {
 
 TEST_F(SimulationControllerTest, ExplodedGarmentStopsWithWhereItExplodedAndKeepsTheStateBeforeIt) {
   // The default t-shirt that no fabric holds together (the softest stretch the settings admit, no shear or bending
-  // stiffness, 1000 m/s^2, 0.1 s steps): the drape stops Diverged, the error names the triangle and its panel, and
-  // the garment shown is the last good state, not the exploded one.
+  // stiffness, the most friction, which holds it on the body, 1000 m/s^2, 0.1 s steps): the drape stops Diverged,
+  // the error names the triangle and its panel, and the garment shown is the last good state, not the exploded one.
   qt::SceneState state;
   state.input = assetsDir() / "scenes" / "default.json";
   state.overrides = {{"solver.stage", "drape"},       {"fabric.stretch_warp", "1e-3"}, {"fabric.stretch_weft", "1e-3"},
                      {"fabric.shear", "0"},           {"fabric.bend_warp", "0"},       {"fabric.bend_weft", "0"},
+                     {"fabric.friction", "5"},
                      {"sim.gravity", "-1000"},        {"solver.newton.h_max", "0.1"},  {"solver.max_sim_time", "0.5"}};
   qt::SimulationController controller;
   Recorder rec;

@@ -1,6 +1,7 @@
 // An exploded garment ends the run Diverged in every stage (drape, both previews, the pipeline), with the state before
 // the step that exploded kept and the triangle that tore named. The exploding scene is the default t-shirt with
-// nothing to hold it together (exploded_state_support.h); a free fall is checked in tests/unit/sim/exploded_state_test.cpp.
+// nothing to hold it together but the body's friction (exploded_state_support.h); a free fall is checked in
+// tests/unit/sim/exploded_state_test.cpp.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -28,7 +29,7 @@ TEST(ExplodedState, EndsDivergedInEveryStageWithTheStateBeforeIt) {
       {"pipeline", {{"solver.stage", "full"}}}};
   for (const Stage& stage : stages) {
     SCOPED_TRACE(stage.name);
-    auto overrides = nothingHoldsIt();
+    auto overrides = nothingHoldsItButTheBody();
     overrides.insert(overrides.end(), stage.settings.begin(), stage.settings.end());
     Simulation sim(sceneWith("default.json", overrides));
     Eigen::MatrixX3d before = sim.positions();

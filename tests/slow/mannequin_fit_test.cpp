@@ -29,6 +29,24 @@ TEST(Mannequin, ShippedFemaleAndMaleMeasurementsFit) {
   expectValidMannequin(test::assetsDir() / "avatars" / "male.yaml");
 }
 
+// A body of other proportions than the shipped ones: full hips and thighs against a narrow waist (where a ledge at
+// the hips would show most), arms raised to 20 degrees below the horizontal, at a petite size. It fits its girths and
+// stays smooth.
+TEST(Mannequin, FullHipsAtAPetiteSizeFitAndStaySmooth) {
+  BodyMeasurements m = loadBodyMeasurements(test::assetsDir() / "avatars" / "female.yaml");
+  m.hips = 1.22;
+  m.thigh = 0.70;
+  m.waist = 0.80;
+  m.armPoseAngle = 20.0;
+  m = scaledBodyMeasurements(m, 0.9);
+  const TriangleMesh mesh = makeMannequin(m);
+  const MannequinLevels levels = mannequinLevels(m);
+  EXPECT_NEAR(torsoGirth(mesh, levels.hips), m.hips, 0.02);
+  EXPECT_NEAR(torsoGirth(mesh, levels.waist), m.waist, 0.02);
+  EXPECT_NEAR(thighGirth(mesh, levels.crotch), m.thigh, 0.02);
+  expectSmoothMannequin(mesh, m);
+}
+
 // Distance between the mannequin made from mean_all.yaml and the real mean_all body, over torso and legs.
 TEST(Mannequin, MatchesTheRealMeanBodyOverTorsoAndLegs) {
   DRAPE_SHARED_FILE(yaml, "garmentcode/mean_all.yaml");
@@ -36,6 +54,7 @@ TEST(Mannequin, MatchesTheRealMeanBodyOverTorsoAndLegs) {
   const TriangleMesh real = loadAvatar(obj);
   const TriangleMesh& ours = mannequinFor(yaml);
   const MannequinLevels levels = mannequinLevels(loadBodyMeasurements(yaml));
+  expectSmoothMannequin(ours, loadBodyMeasurements(yaml));
   std::filesystem::create_directories(test::testOutputDir() / "mannequin");
   exportMesh(ours, test::testOutputDir() / "mannequin" / "mean_all_mannequin.obj");  // for inspection
   // Torso and legs: below the armpits, inside the shoulder width (the arms of the A-pose lie outside).

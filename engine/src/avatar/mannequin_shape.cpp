@@ -34,6 +34,15 @@ constexpr double kLegLean = 0.055;
 
 // Smooth-minimum radii (metres): legs to torso, arm parts to each other, arms to torso, head to neck, foot.
 constexpr double kLegBlend = 0.012;
+// Where the torso meets the thighs: the torso may reach kCrotchFlare metres beyond the thighs per metre above the
+// crotch join, and the thighs beyond the torso kThighTaper metres per metre below the legs' top, so that each
+// narrows into the other along a slope instead of ending in a ledge. The join lies so that the torso bridges the gap
+// between the thighs kCrotchBridge above the crotch level, where the thighs are still apart and leg_circ is
+// measured. kHipBlend rounds those slopes.
+constexpr double kCrotchFlare = 1.0;
+constexpr double kThighTaper = 0.4;
+constexpr double kCrotchBridge = 0.015;
+constexpr double kHipBlend = 0.02;
 constexpr double kArmPartBlend = 0.015;
 constexpr double kArmBlend = 0.02;
 constexpr double kHeadBlend = 0.03;
@@ -44,6 +53,8 @@ double smoothMin(double a, double b, double k) {
   const double h = std::max(k - std::abs(a - b), 0.0) / k;
   return std::min(a, b) - h * h * k * 0.25;
 }
+
+double smoothMax(double a, double b, double k) { return -smoothMin(-a, -b, k); }
 
 double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
@@ -73,12 +84,6 @@ double hullPerimeter(std::vector<Eigen::Vector2d> p) {
 double ellipsePerimeter(double a, double b) {
   const double h = (a - b) * (a - b) / ((a + b) * (a + b));
   return kPi * (a + b) * (1.0 + 3.0 * h / (10.0 + std::sqrt(4.0 - 3.0 * h)));
-}
-
-double roundCone(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double ra, double rb) {
-  const Eigen::Vector3d ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  return (p - (a + t * ab)).norm() - (ra + t * (rb - ra));
 }
 
 double ellipsoid(const Eigen::Vector3d& p, const Eigen::Vector3d& centre, const Eigen::Vector3d& radii) {
@@ -190,7 +195,8 @@ MannequinShape::MannequinShape(const BodyMeasurements& m) : m_levels(levelsFor(m
   };
   const double thighRatio = 1.0;
   const double thighRx = m.thigh / ellipsePerimeter(1.0, thighRatio);
-  const double crotchCx = thighRx + 0.008;  // 1.6 cm between the inner thighs at the crotch
+  const double thighGap = 0.016;  // between the inner thighs at the crotch
+  const double crotchCx = thighRx + 0.5 * thighGap;
   const double knee = kKneeOfHeight * height;
   const double ankle = kAnkleOfHeight * height;
   // The leg axis runs from the crotch out by kStance and back by kLegLean at the ankle (linear in height).
@@ -218,7 +224,7 @@ MannequinShape::MannequinShape(const BodyMeasurements& m) : m_levels(levelsFor(m
     m_legRz.y.push_back(rx * level.depthRatio);
   }
   m_legTop = l.crotch + 0.5 * (l.hips - l.crotch);
-  m_torsoBottom = l.crotch + 0.02;
+  m_crotchJoin = l.crotch + kCrotchBridge - 0.5 * thighGap / kCrotchFlare;
   const double footScale = height / 1.70;
   m_footCentre = Eigen::Vector3d(axisX(ankle) + 0.01, 0.03 * footScale, axisZ(ankle) + 0.085 * footScale);
   m_footRadii = Eigen::Vector3d(0.05, 0.045, 0.128) * footScale;
@@ -325,19 +331,24 @@ MannequinShape::MannequinShape(const BodyMeasurements& m) : m_levels(levelsFor(m
   m_headRadii = Eigen::Vector3d(0.30, 0.43, 0.38) * headLength;
   m_headCentre = Eigen::Vector3d(0.0, l.top - m_headRadii.y(), 0.025);
 
-  // ---- Arms: round cones from the shoulder joint along the pose direction; arm_length is shoulder to wrist. ----
+  // ---- Arms: a tapered tube from the shoulder joint along the pose direction; arm_length is shoulder to wrist. ----
   const double angle = m.armPoseAngle * kPi / 180.0;
   const Eigen::Vector3d dir(std::cos(angle), -std::sin(angle), 0.0);
   const Eigen::Vector3d joint(0.5 * m.shoulderWidth - 0.012, l.neckBase - 0.05 * height, -0.01 * m.bust);
   const double wristRadius = m.wrist / (2.0 * kPi);
   const double handLength = 0.1 * height;
   const double length = m.armLength;
-  auto along = [&](double f) { return Eigen::Vector3d(joint + f * length * dir); };
-  m_armCones = {{joint, along(0.25), 0.050 * m.bust, 0.046 * m.bust},
-                {along(0.25), along(0.47), 0.046 * m.bust, 1.45 * wristRadius},
-                {along(0.47), along(0.75), 1.45 * wristRadius, 1.3 * wristRadius},
-                {along(0.75), along(1.0), 1.3 * wristRadius, wristRadius},
-                {along(1.0), Eigen::Vector3d(along(1.0) + handLength * dir), 1.05 * wristRadius, 0.013 * height}};
+  // Radius over the distance along the axis: shoulder, upper arm, elbow, forearm, wrist, fingertips.
+  m_armJoint = joint;
+  m_armDir = dir;
+  m_armLength = length + handLength;
+  const std::vector<std::pair<double, double>> armRadii = {
+      {0.0, 0.050 * m.bust},           {0.25 * length, 0.046 * m.bust}, {0.47 * length, 1.45 * wristRadius},
+      {0.75 * length, 1.3 * wristRadius}, {length, wristRadius},          {m_armLength, 0.013 * height}};
+  for (const auto& [s, r] : armRadii) {
+    m_armRadius.x.push_back(s);
+    m_armRadius.y.push_back(r);
+  }
   m_deltoidCentre = joint + Eigen::Vector3d(0.008, 0.0, 0.0);
   m_deltoidRadii = Eigen::Vector3d(0.055, 0.058, 0.068) * m.bust;
 
@@ -350,11 +361,10 @@ MannequinShape::MannequinShape(const BodyMeasurements& m) : m_levels(levelsFor(m
   half += 0.05;
   m_bounds.extend(Eigen::Vector3d(-half, 0.0, -half));
   m_bounds.extend(Eigen::Vector3d(half, height, half));
-  for (const Cone& c : m_armCones) {
-    for (const auto& [q, r] : {std::pair{c.a, c.ra}, std::pair{c.b, c.rb}}) {
-      m_bounds.extend(Eigen::Vector3d(q + Eigen::Vector3d::Constant(r)));
-      m_bounds.extend(Eigen::Vector3d(-q.x() - r, q.y() - r, q.z() - r));
-    }
+  const double armRadius = *std::max_element(m_armRadius.y.begin(), m_armRadius.y.end());
+  for (const Eigen::Vector3d& q : {m_armJoint, Eigen::Vector3d(m_armJoint + m_armLength * m_armDir)}) {
+    m_bounds.extend(Eigen::Vector3d(q + Eigen::Vector3d::Constant(armRadius)));
+    m_bounds.extend(Eigen::Vector3d(-q.x() - armRadius, q.y() - armRadius, q.z() - armRadius));
   }
 }
 
@@ -379,7 +389,7 @@ double MannequinShape::torso(const Eigen::Vector3d& p) const {
   const TorsoSection s = torsoSection(p.y());
   const double dx = p.x(), dz = p.z() - s.cz;
   const double d = std::hypot(dx, dz) - s.radius(std::atan2(dz, dx));
-  return std::max({d, m_torsoBottom - p.y(), p.y() - m_neckTop});
+  return std::max(d, p.y() - m_neckTop);
 }
 
 double MannequinShape::leg(const Eigen::Vector3d& p) const {
@@ -392,14 +402,13 @@ double MannequinShape::leg(const Eigen::Vector3d& p) const {
     const double c = dx / rho, s = dz / rho;
     d = rho - 1.0 / std::sqrt(c * c / (rx * rx) + s * s / (rz * rz));
   }
-  d = std::max(d, y - m_legTop);
   return smoothMin(d, ellipsoid(p, m_footCentre, m_footRadii), kFootBlend);
 }
 
 double MannequinShape::arm(const Eigen::Vector3d& p) const {
-  double d = ellipsoid(p, m_deltoidCentre, m_deltoidRadii);
-  for (const Cone& c : m_armCones) d = smoothMin(d, roundCone(p, c.a, c.b, c.ra, c.rb), kArmPartBlend);
-  return d;
+  const double s = std::clamp((p - m_armJoint).dot(m_armDir), 0.0, m_armLength);
+  const double tube = (p - (m_armJoint + s * m_armDir)).norm() - m_armRadius(s);
+  return smoothMin(ellipsoid(p, m_deltoidCentre, m_deltoidRadii), tube, kArmPartBlend);
 }
 
 double MannequinShape::head(const Eigen::Vector3d& p) const { return ellipsoid(p, m_headCentre, m_headRadii); }
@@ -408,8 +417,11 @@ double MannequinShape::value(const Eigen::Vector3d& p) const {
   const Eigen::Vector3d mirrored(-p.x(), p.y(), p.z());
   const Eigen::Vector3d& right = p.x() >= 0.0 ? p : mirrored;  // legs and arms are mirror images
   const Eigen::Vector3d& left = p.x() >= 0.0 ? mirrored : p;
-  double d = smoothMin(torso(p), head(p), kHeadBlend);
-  d = smoothMin(d, std::min(leg(right), leg(left)), kLegBlend);
+  const double legs = std::min(leg(right), leg(left)), body = torso(p);
+  const double torsoAboveThighs = smoothMax(body, legs - kCrotchFlare * (p.y() - m_crotchJoin), kHipBlend);
+  const double thighsBelowTorso = smoothMax(legs, body - kThighTaper * (m_legTop - p.y()), kHipBlend);
+  double d = smoothMin(torsoAboveThighs, head(p), kHeadBlend);
+  d = smoothMin(d, thighsBelowTorso, kLegBlend);
   d = smoothMin(d, std::min(arm(right), arm(left)), kArmBlend);
   // Flat soles and nothing above the top of the head.
   return std::max({d, -p.y(), p.y() - m_levels.top});

@@ -5,7 +5,8 @@
 // functions of the measurements at the landmark levels, interpolated by monotone cubics in between; the torso
 // sections at the bust, underbust, waist and hip levels and the legs at the crotch are scaled so that their
 // convex-hull girths equal the measurements. The head is an ellipsoid, the feet rounded ellipsoids and the arms
-// tapered round cones at the arm pose angle; the parts are joined by a polynomial smooth minimum.
+// tapered tubes at the arm pose angle; the parts are joined by a polynomial smooth minimum, and the torso
+// narrows into the thighs above the crotch.
 // docs/MANNEQUIN.md states every proportion constant.
 #include <Eigen/Core>
 #include <vector>
@@ -59,14 +60,10 @@ class MannequinShape {
   // A box that contains the whole body, and a point well inside it.
   const BoundingBox& bounds() const { return m_bounds; }
   Eigen::Vector3d interiorPoint() const;
-  // The torso section at height y (metres), before the cuts at the crotch and above the neck.
+  // The torso section at height y (metres), before it narrows into the thighs and is cut above the neck.
   TorsoSection torsoSection(double y) const;
 
  private:
-  struct Cone {  // round cone from a (radius ra) to b (radius rb)
-    Eigen::Vector3d a, b;
-    double ra, rb;
-  };
   struct LegSection {  // ellipse centred at (cx, cz) with half-axes rx (x) and rz (z)
     double cx, cz, rx, rz;
   };
@@ -80,12 +77,16 @@ class MannequinShape {
   // Torso parameters over height, one profile per TorsoSection field.
   Profile m_halfWidth, m_front, m_back, m_cz, m_exponent, m_bust, m_seat, m_blades;
   Profile m_legCx, m_legCz, m_legRx, m_legRz;  // leg ellipse over height
-  double m_torsoBottom = 0.0;  // heights where the torso starts and the neck ends
+  double m_crotchJoin = 0.0;  // the height where the torso meets the thighs' surface (kCrotchFlare)
   double m_neckTop = 0.0;
   double m_legTop = 0.0;
   Eigen::Vector3d m_headCentre, m_headRadii;
   Eigen::Vector3d m_footCentre, m_footRadii;  // the +x foot
-  std::vector<Cone> m_armCones;
+  // The +x arm: one tube along m_armDir from m_armJoint, its radius a profile over the distance along the axis
+  // (to m_armLength, the fingertips), so that it tapers without the rings of a chain of blended cones.
+  Eigen::Vector3d m_armJoint, m_armDir;
+  double m_armLength = 0.0;
+  Profile m_armRadius;
   Eigen::Vector3d m_deltoidCentre;
   Eigen::Vector3d m_deltoidRadii;
   BoundingBox m_bounds;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <string>
 
+#include "drape/avatar/avatar_loader.h"
 #include "drape/avatar/body_measurements.h"
 #include "drape/core/input_error.h"
 #include "drape/io/mesh_export.h"
@@ -102,6 +103,16 @@ TEST(Mannequin, MissingLandmarksFollowTheHeight) {
   EXPECT_NEAR(torsoGirth(mesh, levels.waist), m.waist, 0.02);
   EXPECT_NEAR(torsoGirth(mesh, levels.hips), m.hips, 0.02);
   EXPECT_NEAR(thighGirth(mesh, levels.crotch), m.thigh, 0.02);
+}
+
+// The meshes shipped as the default mannequins are the smooth ones: no ledge at the hips, no rings on the arms.
+TEST(Mannequin, ShippedMannequinsAreSmooth) {
+  for (const char* name : {"female", "male"}) {
+    SCOPED_TRACE(name);
+    const auto dir = test::assetsDir() / "avatars";
+    expectSmoothMannequin(loadAvatar(dir / (std::string(name) + ".obj")),
+                          loadBodyMeasurements(dir / (std::string(name) + ".yaml")));
+  }
 }
 
 // Writes assets/avatars/{female,male}.obj. Run with --gtest_also_run_disabled_tests.

@@ -160,11 +160,13 @@ TEST(PipelineHandoff, SettledPreviewDraggedAgainTakesItsLongStepsAndRestsAgain) 
   while (!sim.finished()) last = sim.step();
   ASSERT_EQ(sim.endReason(), "AtRest");
   EXPECT_FALSE(last.quasiNewton);  // settled by Newton's steps
-  // The lowest vertex of the hem, pulled 5 cm out in front.
+  // The lowest vertex of the hem, pulled 5 cm outward, horizontally away from the garment's axis (not into the body).
   const Eigen::MatrixX3d rest = sim.positions();
   Eigen::Index grabbed = 0;
   rest.col(1).minCoeff(&grabbed);
-  const Eigen::Vector3d target = rest.row(grabbed).transpose() + Eigen::Vector3d(0.0, 0.0, 0.05);
+  Eigen::Vector3d outward = rest.row(grabbed).transpose() - rest.colwise().mean().transpose();
+  outward.y() = 0.0;
+  const Eigen::Vector3d target = rest.row(grabbed).transpose() + 0.05 * outward.normalized();
   sim.setDrag(static_cast<int>(grabbed), target);
   EXPECT_FALSE(sim.finished());
   for (int i = 0; i < 30; ++i) {
