@@ -15,9 +15,10 @@
 namespace drape::test {
 namespace {
 
-// Cells the drape does not hold (docs/EXTREMES.md): none. A cell listed here is run and reported, and fails the
-// test when it comes to hold, so that this list is kept true.
-const std::set<std::string> kOpen = {};
+// Cells the drape does not hold (docs/EXTREMES.md): the 1 m mesh, whose sleeve seam draws a vertex through the
+// hand while it closes. A cell listed here is run and reported, and fails the test when it comes to hold, so that this
+// list is kept true.
+const std::set<std::string> kOpen = {"mesh edge max"};
 
 TEST(ExtremesGrid, LibraryTshirtHoldsInEveryCell) {
   SceneRequest base;
