@@ -10,7 +10,7 @@
 namespace drape {
 
 ContactTerms makeContactTerms(const ContactSettings& settings, const Scene& scene, const Garment& garment,
-                              std::shared_ptr<const collision::AvatarCollider> collider) {
+                              std::shared_ptr<const collision::AvatarCollider> collider, newton::ContourPull pull) {
   ContactTerms terms;
   terms.thickness = settings.thickness;
   terms.collider = std::move(collider);
@@ -30,6 +30,7 @@ ContactTerms makeContactTerms(const ContactSettings& settings, const Scene& scen
   }
   setup.selfCollision = settings.selfCollision;
   setup.selfContact = setup.avatarContact;
+  setup.contourPull = pull;
   // Friction only where there is something to rub against and a non-zero coefficient.
   if (settings.friction && (setup.avatar || setup.selfCollision)) {
     double mu = scene.fabric.friction;

@@ -9,6 +9,7 @@
 #include "drape/garment/garment.h"
 #include "drape/newton/contact/avatar_contact.h"
 #include "drape/newton/contact/avatar_feature_contact.h"
+#include "drape/newton/contact/intersection_contour.h"
 #include "drape/newton/energy.h"
 #include "drape/scene/scene.h"
 #include "drape/scene/stage_settings.h"
@@ -26,9 +27,10 @@ struct ContactTerms {
 };
 
 // settings: the scene's contact settings; scene: its fabrics (their stretch stiffness and friction coefficients);
-// collider: the scene's merged collider (null when it has none), shared by the stages.
+// collider: the scene's merged collider (null when it has none), shared by the stages; pull: how the stage's solver
+// takes the untangling pull (newton::ContourPull).
 ContactTerms makeContactTerms(const ContactSettings& settings, const Scene& scene, const Garment& garment,
-                              std::shared_ptr<const collision::AvatarCollider> collider);
+                              std::shared_ptr<const collision::AvatarCollider> collider, newton::ContourPull pull);
 
 // |V| mask, 1 where the garment vertex (x flat, 3|V|) is within 1.5 contact thicknesses of a collider (a fresh
 // query per vertex: for snapshots, not for every step).

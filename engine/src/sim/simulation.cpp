@@ -123,9 +123,11 @@ void Simulation::startPreview(const ResumeState* from) {
     start.velocities = flatOf(from->velocities);
     start.time = from->time;
   }
-  m_stage = makePreviewStage(m_model->cloth, m_settings,
-                             makeContactTerms(m_settings.contact, m_scene, m_garment, m_model->collider), start,
-                             from == nullptr);
+  // The preview's quasi-Newton steps follow the contour; the drape's and the settling's Newton steps hold its pull.
+  m_stage = makePreviewStage(
+      m_model->cloth, m_settings,
+      makeContactTerms(m_settings.contact, m_scene, m_garment, m_model->collider, newton::ContourPull::Followed), start,
+      from == nullptr);
   m_stageStart = start.time;
   m_settledSince = -1.0;
   m_settling = false;
@@ -141,8 +143,9 @@ void Simulation::startDrape(const Eigen::MatrixX3d& positions, const Eigen::Matr
   m_handOver = positions;
   m_handOverTime = time;
   m_stage = makeDrapeStage(m_model->cloth, m_settings,
-                           makeContactTerms(m_settings.contact, m_scene, m_garment, m_model->collider), start,
-                           positions.rows() == 0);
+                           makeContactTerms(m_settings.contact, m_scene, m_garment, m_model->collider,
+                                            newton::ContourPull::HeldOverTheStep),
+                           start, positions.rows() == 0);
   m_stageStart = time;
   m_atRest = false;
   if (m_dragVertex >= 0) m_stage->setDrag(m_dragVertex, m_dragTarget);
@@ -172,7 +175,9 @@ void Simulation::startSettling() {
   start.velocities = m_stage->velocities();
   start.time = m_stage->time();
   m_stage = makeSettleStage(m_model->cloth, m_settings,
-                            makeContactTerms(m_settings.contact, m_scene, m_garment, m_model->collider), start);
+                            makeContactTerms(m_settings.contact, m_scene, m_garment, m_model->collider,
+                                             newton::ContourPull::HeldOverTheStep),
+                            start);
   m_settling = true;
   m_atRest = false;
   if (m_dragVertex >= 0) m_stage->setDrag(m_dragVertex, m_dragTarget);

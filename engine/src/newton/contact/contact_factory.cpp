@@ -38,7 +38,7 @@ std::vector<std::unique_ptr<Energy>> makeContactEnergies(const ContactSetup& set
     out.push_back(std::move(e));
     // Pulled as hard as the contact pushes at its full thickness.
     out.push_back(std::make_unique<IntersectionContourEnergy>(
-        self, setup.selfContact.stiffness * setup.selfContact.thickness));
+        self, setup.selfContact.stiffness * setup.selfContact.thickness, setup.contourPull));
   }
   if (setup.frictionCoefficient > 0.0 && (avatar || self)) {
     const FrictionParameters friction{setup.frictionCoefficient, setup.frictionEpsV, setup.frictionMajorizer};

@@ -1,5 +1,6 @@
-// Crossing segments by forward-mode automatic differentiation over the two triangles' 18 coordinates; candidate
-// pairs from an LBVH over the triangles around the step's crossings.
+// Crossing segments by forward-mode automatic differentiation over the two triangles' 18 coordinates; a followed
+// pull's candidate pairs from an LBVH over the triangles around the step's crossings, a held pull's gradient summed
+// once at the step's start.
 #include "drape/newton/contact/intersection_contour.h"
 
 #include <tbb/parallel_for.h>
@@ -74,15 +75,40 @@ double crossingLength(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, cons
   return length;
 }
 
-IntersectionContourEnergy::IntersectionContourEnergy(const SelfContactEnergy* self, double force)
-    : m_self(self), m_force(force) {}
+IntersectionContourEnergy::IntersectionContourEnergy(const SelfContactEnergy* self, double force, ContourPull pull)
+    : m_self(self), m_force(force), m_pull(pull) {}
 
 void IntersectionContourEnergy::beginStep(const StepContext& ctx) {
   m_candidates.clear();
+  m_heldAt.resize(0);
+  m_heldGradient.resize(0);
   const std::vector<std::pair<int, int>>& crossings = m_self->crossings();
   if (crossings.empty()) return;
+  if (m_pull == ContourPull::HeldOverTheStep) {
+    holdAt(crossings, *ctx.previousPositions);
+  } else {
+    followAround(crossings, *ctx.previousPositions);
+  }
+}
+
+void IntersectionContourEnergy::holdAt(const std::vector<std::pair<int, int>>& crossings, const Eigen::VectorXd& x) {
   const Eigen::MatrixX3i& tris = m_self->triangles();
-  const Eigen::VectorXd& x = *ctx.previousPositions;
+  const auto at = [&](int t, int k) -> Eigen::Vector3d { return x.segment<3>(3 * tris(t, k)); };
+  m_heldAt = x;
+  m_heldGradient = Eigen::VectorXd::Zero(x.size());
+  for (const auto& [t, u] : crossings) {
+    Grad18 gradient;
+    crossingLength(at(t, 0), at(t, 1), at(t, 2), at(u, 0), at(u, 1), at(u, 2), &gradient);
+    for (int k = 0; k < 3; ++k) {
+      m_heldGradient.segment<3>(3 * tris(t, k)) += m_force * gradient.segment<3>(3 * k);
+      m_heldGradient.segment<3>(3 * tris(u, k)) += m_force * gradient.segment<3>(9 + 3 * k);
+    }
+  }
+}
+
+void IntersectionContourEnergy::followAround(const std::vector<std::pair<int, int>>& crossings,
+                                             const Eigen::VectorXd& x) {
+  const Eigen::MatrixX3i& tris = m_self->triangles();
   const int nt = static_cast<int>(tris.rows());
   // The region: the crossing triangles and kRings rings of triangles around them (sharing a vertex).
   std::vector<char> inRegion(nt, 0), vertexIn(x.size() / 3, 0);
@@ -122,6 +148,7 @@ void IntersectionContourEnergy::beginStep(const StepContext& ctx) {
 }
 
 double IntersectionContourEnergy::value(const Eigen::VectorXd& x) const {
+  if (m_heldGradient.size() > 0) return m_heldGradient.dot(x - m_heldAt);
   const Eigen::MatrixX3i& tris = m_self->triangles();
   const auto at = [&](int t, int k) -> Eigen::Vector3d { return x.segment<3>(3 * tris(t, k)); };
   std::vector<double> length(m_candidates.size(), 0.0);
@@ -135,6 +162,10 @@ double IntersectionContourEnergy::value(const Eigen::VectorXd& x) const {
 }
 
 void IntersectionContourEnergy::addGradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
+  if (m_heldGradient.size() > 0) {
+    g += m_heldGradient;
+    return;
+  }
   const Eigen::MatrixX3i& tris = m_self->triangles();
   const auto at = [&](int t, int k) -> Eigen::Vector3d { return x.segment<3>(3 * tris(t, k)); };
   std::vector<Grad18> gradient(m_candidates.size());

@@ -1,6 +1,7 @@
 // Untangling by the intersection contour (newton/contact/intersection_contour.h): the crossing segment of two
 // triangles against hand-computed cuts, its gradient against central differences, and a panel pushed through
-// another that comes back out once released, where the self-contact penalty alone would hold it through.
+// another that comes back out once released, where the self-contact penalty alone would hold it through; the pull
+// held over a Newton step against the followed contour's gradient.
 #include "drape/newton/contact/intersection_contour.h"
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <Eigen/Dense>
 #include <cstdio>
 #include <random>
+#include <stdexcept>
 
 #include "drape/collision/self_intersection.h"
 #include "drape/newton/contact/contact_factory.h"
@@ -130,13 +132,14 @@ int crossings(const model::ClothModel& m, const Eigen::VectorXd& x) {
   return collision::countSelfIntersections(rows(x), m.triangles).count;
 }
 
-// Positions after 0.2 s with the drape's contact terms: self contact at 2 mm and 1000 N/m, and the contour pull
-// unless withContour is false.
+// Positions after 0.2 s with the drape's contact terms: self contact at 2 mm and 1000 N/m, and the contour pull held
+// over each step unless withContour is false.
 Eigen::VectorXd released(const model::ClothModel& m, bool withContour = true) {
   newton::ContactSetup setup;
   setup.selfCollision = true;
   setup.selfContact.thickness = 0.002;
   setup.selfContact.stiffness = 1000.0;
+  setup.contourPull = newton::ContourPull::HeldOverTheStep;
   auto energies = newton::makeContactEnergies(setup, m.numVertices(), m.triangles, {});
   if (!withContour) {
     std::erase_if(energies, [](const auto& e) { return e->name() == "intersection_contour"; });
@@ -149,6 +152,43 @@ Eigen::VectorXd released(const model::ClothModel& m, bool withContour = true) {
     if (status == newton::NewtonStatus::Diverged) break;
   }
   return solver.positions();
+}
+
+// The pull held over a step is the followed contour's gradient at the step's start, constant through the step, and
+// its value changes linearly with it: against the followed term's own gradient at x_n and a move within the step.
+TEST(IntersectionContour, TheHeldPullIsTheContoursGradientAtTheStepStart) {
+  const model::ClothModel m = cornerCut();
+  newton::ContactSetup setup;
+  setup.selfCollision = true;
+  setup.selfContact.thickness = 0.002;
+  setup.selfContact.stiffness = 1000.0;
+  auto followed = newton::makeContactEnergies(setup, m.numVertices(), m.triangles, {});
+  setup.contourPull = newton::ContourPull::HeldOverTheStep;
+  auto held = newton::makeContactEnergies(setup, m.numVertices(), m.triangles, {});
+  const Eigen::VectorXd& x0 = m.positions;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(x0.size());
+  newton::StepContext ctx;
+  ctx.previousPositions = &x0;
+  ctx.previousVelocities = &zero;
+  ctx.h = 0.002;
+  for (auto* energies : {&followed, &held})
+    for (auto& e : *energies) e->beginStep(ctx);
+  const auto contour = [](auto& energies) -> const newton::Energy& {
+    for (auto& e : energies)
+      if (e->name() == "intersection_contour") return *e;
+    throw std::logic_error("no contour term");
+  };
+  Eigen::VectorXd expected = zero, at0 = zero, at1 = zero;
+  contour(followed).addGradient(x0, expected);
+  ASSERT_GT(expected.norm(), 0.0);  // the corner is cut: a pull
+  // A move within the step: the panel B slid 5 mm along its chord, which changes the true contour.
+  Eigen::VectorXd x1 = x0;
+  for (int v = kN * kN; v < m.numVertices(); ++v) x1.segment<3>(3 * v) += 0.005 * Vector3d(1, -1, 0).normalized();
+  contour(held).addGradient(x0, at0);
+  contour(held).addGradient(x1, at1);
+  EXPECT_LT((at0 - expected).norm(), 1e-12 * expected.norm());
+  EXPECT_LT((at1 - expected).norm(), 1e-12 * expected.norm());
+  EXPECT_NEAR(contour(held).value(x1) - contour(held).value(x0), expected.dot(x1 - x0), 1e-12);
 }
 
 TEST(IntersectionContour, APanelPushedThroughAnotherComesBackOut) {

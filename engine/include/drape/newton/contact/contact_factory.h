@@ -13,6 +13,7 @@
 #include "drape/model/cloth_model.h"
 #include "drape/newton/contact/avatar_contact.h"
 #include "drape/newton/contact/friction.h"
+#include "drape/newton/contact/intersection_contour.h"
 #include "drape/newton/energy.h"
 
 namespace drape::newton {
@@ -27,6 +28,7 @@ struct ContactSetup {
   bool selfCollision = false;
   ContactParameters selfContact;
   double selfMargin = 0.0;           // extra BVH search radius beyond the thickness, metres (0: = thickness)
+  ContourPull contourPull = ContourPull::Followed;  // how the untangling pull enters a step (the solver's choice)
   double frictionCoefficient = 0.0;  // mu; 0 creates no friction energy
   double frictionEpsV = 1e-3;        // m/s, see FrictionParameters
   bool frictionMajorizer = true;     // see FrictionParameters::majorizeAtPrediction
