@@ -109,8 +109,8 @@ inline double thighGirth(const TriangleMesh& mesh, double h) {
 }
 
 // The steepest slope |dz/dy| of the front and back outlines of the side section x = x0, between heights lo and hi,
-// sampled every 2 mm. Where a ledge rings the body the outline steps (a slope of several); a body's own outline
-// between the knees and the waist stays below about 1.5 (mean_all's scan: 1.4).
+// sampled every 2 mm. Where a ledge rings the body the outline steps, far steeper than a real body's outline between
+// the knees and the waist (docs/MANNEQUIN.md, "Smoothness").
 inline double steepestSideOutline(const TriangleMesh& mesh, double x0, double lo, double hi) {
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> segments;  // (y, z) ends
   for (int f = 0; f < mesh.triangleCount(); ++f) {

@@ -79,7 +79,7 @@ class MannequinShape {
   Profile m_legCx, m_legCz, m_legRx, m_legRz;  // leg ellipse over height
   double m_crotchJoin = 0.0;  // the height where the torso meets the thighs' surface (kCrotchFlare)
   double m_neckTop = 0.0;
-  double m_legTop = 0.0;
+  double m_legTop = 0.0;  // above it the thighs lie inside the torso (kThighTaper)
   Eigen::Vector3d m_headCentre, m_headRadii;
   Eigen::Vector3d m_footCentre, m_footRadii;  // the +x foot
   // The +x arm: one tube along m_armDir from m_armJoint, its radius a profile over the distance along the axis
