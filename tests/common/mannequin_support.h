@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <numbers>
 #include <numeric>
 #include <set>
 #include <utility>
@@ -184,7 +185,7 @@ inline std::vector<double> armGirths(const TriangleMesh& mesh, double xFrom) {
 // from one centimetre to the next.
 inline void expectSmoothMannequin(const TriangleMesh& mesh, const BodyMeasurements& m) {
   const MannequinLevels levels = mannequinLevels(m);
-  const double hipRadius = m.hips / (2.0 * 3.141592653589793);
+  const double hipRadius = m.hips / (2.0 * std::numbers::pi);
   for (const double fraction : {0.3, 0.45, 0.6, 0.75}) {
     const double steepest = steepestSideOutline(mesh, fraction * hipRadius, levels.crotch - 0.15, levels.waist);
     EXPECT_LT(steepest, 2.0) << "side section at " << fraction * hipRadius << " m";
