@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "drape/collision/avatar_collider.h"
 #include "drape/core/input_error.h"
 #include "drape/core/percentile.h"
+#include "drape/garment/garment_transfer.h"
 #include "drape/geometry/strain.h"
 #include "drape/io/garment_state.h"
 #include "drape/scene/pins.h"
@@ -45,6 +47,27 @@ Eigen::VectorXd flatOf(const Eigen::MatrixX3d& rows) {
 
 // How long the full pipeline's preview must stay below its hand-over speed, s (as the drape's early-stop window).
 constexpr double kHandOverWindow = 0.1;
+
+// `from` on `to`'s mesh: unchanged when `to` is the mesh `from` is on, else carried through the pattern coordinates.
+// Nothing when it cannot be carried (the state is not on from.garment, or the meshes are not of one pattern).
+std::optional<ResumeState> carriedTo(const ResumeState& from, const Garment& to) {
+  const Garment& mesh = *from.garment;
+  if (from.vertexCount != mesh.vertexCount()) return std::nullopt;
+  ResumeState out = from;
+  out.garment.reset();
+  if (mesh.vertexCount() == to.vertexCount() && mesh.triangles == to.triangles) return out;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> t;
+  try {
+    t = garmentTransfer(mesh, to);
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
+  out.positions = t * from.positions;
+  out.velocities = t * from.velocities;
+  if (from.previewPositions.rows() == mesh.vertexCount()) out.previewPositions = t * from.previewPositions;
+  out.vertexCount = to.vertexCount();
+  return out;
+}
 
 }  // namespace
 
@@ -95,6 +118,11 @@ void Simulation::build(const ResumeState* from) {
     m_model->collider = std::make_shared<const collision::AvatarCollider>(m_colliderMesh);
   const StagePlan plan = m_settings.plan;
   const bool runsPreview = plan == StagePlan::Preview || plan == StagePlan::Full;
+  std::optional<ResumeState> carried;
+  if (from && from->garment) {
+    carried = carriedTo(*from, m_garment);
+    from = carried ? &*carried : nullptr;
+  }
   if (from && from->vertexCount != m_garment.vertexCount()) from = nullptr;  // re-meshed: start over
   m_resumed = from != nullptr;
   if (runsPreview && (!from || from->stage == Stage::Preview)) {

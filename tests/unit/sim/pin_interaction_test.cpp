@@ -2,9 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numeric>
 
 #include "drape/newton/newton_solver.h"
 #include "drape/pd/grid_cloth.h"
+#include "drape/pattern/pattern_edit.h"
 #include "drape/pd/preview_solver.h"
 #include "drape/scene/scene.h"
 #include "drape/sim/simulation.h"
@@ -172,6 +174,45 @@ TEST(Resume, RemeshedSceneStartsOver) {
   Simulation edited(std::move(finer), first.resumeState());
   EXPECT_FALSE(edited.resumed());
   EXPECT_DOUBLE_EQ(edited.time(), 0.0);
+}
+
+TEST(Resume, EditedPatternCarriesTheStateToItsNewMesh) {
+  Simulation first(tablecloth("preview"));
+  for (int i = 0; i < 10; ++i) first.step();
+  ResumeState state = first.resumeState();
+  state.garment = std::make_shared<const Garment>(first.garment());
+  // One corner of the square pulled 10 cm outward: the panel is meshed anew.
+  Scene scene = tablecloth("preview");
+  const Panel& panel = scene.pattern.panels[0];
+  const Eigen::Vector2d centre = std::accumulate(panel.vertices.begin(), panel.vertices.end(), Eigen::Vector2d(0, 0)) /
+                                 static_cast<double>(panel.vertices.size());
+  const Eigen::Vector2d corner = panel.vertices[0];
+  scene.pattern = moveVertex(scene.pattern, 0, 0,
+                             corner + (corner - centre).normalized() * 0.1 * scene.pattern.unitsInMeter);
+  Simulation edited(std::move(scene), state);
+  const Garment& before = first.garment();
+  const Garment& after = edited.garment();
+  ASSERT_TRUE(after.vertexCount() != before.vertexCount() || after.triangles != before.triangles);
+  EXPECT_TRUE(edited.resumed());
+  EXPECT_EQ(edited.stage(), Stage::Preview);
+  EXPECT_DOUBLE_EQ(edited.time(), first.time());
+  // Where the new mesh has a vertex at the same pattern point as the old one (the corners that stayed), it carries
+  // that vertex's position.
+  const Eigen::MatrixX3d was = first.positions(), now = edited.positions();
+  int shared = 0;
+  for (int v = 0; v < after.vertexCount(); ++v)
+    for (int u = 0; u < before.vertexCount(); ++u)
+      if ((after.rest.row(v) - before.rest.row(u)).norm() < 1e-9) {
+        ++shared;
+        EXPECT_LT((now.row(v) - was.row(u)).norm(), 1e-9) << "vertex " << v;
+      }
+  EXPECT_GE(shared, 3);
+  // Without the old mesh the state cannot be carried: the edited scene starts over.
+  Scene again = tablecloth("preview");
+  again.pattern = edited.scene().pattern;
+  Simulation restarted(std::move(again), first.resumeState());
+  EXPECT_FALSE(restarted.resumed());
+  EXPECT_DOUBLE_EQ(restarted.time(), 0.0);
 }
 
 TEST(Simulation, ClearCancelLetsTheNextStepRun) {

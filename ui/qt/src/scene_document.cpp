@@ -7,7 +7,6 @@
 
 #include "drape/core/input_error.h"
 #include "drape/io/atomic_file.h"
-#include "drape/garment/garment_transfer.h"
 #include "drape/pattern/pattern_edit.h"
 #include "drape/pattern/pattern_writer.h"
 #include "drape/scene/pins.h"
@@ -94,20 +93,9 @@ SceneDocument::Built SceneDocument::build(const SceneState& state) const {
   std::optional<ResumeState> resume;
   if (m_resumeSource && keepsMesh(state)) resume = m_resumeSource();
   if (m_resumeSource && m_garment && !keepsMesh(state) && keepsMeshSettings(state)) {
-    // An edited pattern: the running state carried to the new mesh through the pattern coordinates.
+    // An edited pattern: the Simulation carries the running state to its new mesh through the pattern coordinates.
     resume = m_resumeSource();
-    if (resume && resume->vertexCount == m_garment->vertexCount()) {
-      Diagnostics ignored;  // the Simulation below reports the same meshing warnings
-      const Garment next = buildSceneGarment(*built.scene, &ignored);
-      const Eigen::SparseMatrix<double, Eigen::RowMajor> t = garmentTransfer(*m_garment, next);
-      resume->positions = t * resume->positions;
-      resume->velocities = t * resume->velocities;
-      if (resume->previewPositions.rows() == m_garment->vertexCount())
-        resume->previewPositions = t * resume->previewPositions;
-      resume->vertexCount = next.vertexCount();
-    } else {
-      resume.reset();
-    }
+    if (resume) resume->garment = m_garment;
   }
   if (resume) {
     // The simulation continues in the stage it was in; the document's scene (what Save writes) keeps its own.

@@ -88,6 +88,10 @@ struct ResumeState {
   Eigen::MatrixX3d previewPositions;  // the state the preview handed to the drape; no rows when the drape
                                       // started from the placed garment
   double previewTime = 0.0;           // scene time of previewPositions, s
+  // The mesh the state is on, for an edited pattern: when set and the new scene meshes the pattern differently, the
+  // state is carried to the new mesh through the pattern coordinates (garmentTransfer). Not set: a mesh with another
+  // vertex count starts over.
+  std::shared_ptr<const Garment> garment;
 };
 
 // The state the scene's stage starts from at given vertex positions (|V| x 3, metres; drape --from): stages
@@ -102,10 +106,10 @@ class Simulation {
  public:
   // Builds the garment, pins and the stage the scene starts with; throws InputError for bad scenes.
   explicit Simulation(Scene scene);
-  // The same for an edited scene, continuing from `from` when the garment has the same vertex count: a preview
-  // continues from its current positions, velocities and time (when the scene's stage runs a preview); a drape
-  // restarts from the last preview state (previewPositions), else from the placed garment. resumed() tells
-  // whether the state was used.
+  // The same for an edited scene, continuing from `from` when the garment has the same vertex count or `from`
+  // carries its garment (ResumeState::garment): a preview continues from its current positions, velocities and time
+  // (when the scene's stage runs a preview); a drape restarts from the last preview state (previewPositions), else
+  // from the placed garment. resumed() tells whether the state was used.
   Simulation(Scene scene, const ResumeState& from);
   ~Simulation();
   Simulation(const Simulation&) = delete;
