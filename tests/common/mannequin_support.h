@@ -51,37 +51,45 @@ inline double hullPerimeter(const std::vector<Point2>& points) {
   return perimeter;
 }
 
+// Where the plane through origin with unit normal n cuts the mesh: one point per crossed edge, and per triangle
+// crossed on two edges the segment joining its two points (indices into points).
+struct PlaneSection {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::pair<int, int>> segments;
+};
+
+inline PlaneSection planeSection(const TriangleMesh& mesh, const Eigen::Vector3d& origin, const Eigen::Vector3d& n) {
+  PlaneSection section;
+  std::map<std::pair<int, int>, int> pointOfEdge;
+  for (int f = 0; f < mesh.triangleCount(); ++f) {
+    std::vector<int> hits;
+    for (int k = 0; k < 3; ++k) {
+      const int i = mesh.triangles(f, k), j = mesh.triangles(f, (k + 1) % 3);
+      const Eigen::Vector3d a = mesh.vertices.row(i), b = mesh.vertices.row(j);
+      const double da = (a - origin).dot(n), db = (b - origin).dot(n);
+      if ((da < 0) == (db < 0)) continue;
+      const auto [it, inserted] = pointOfEdge.try_emplace(std::minmax(i, j), static_cast<int>(section.points.size()));
+      if (inserted) section.points.push_back(a + da / (da - db) * (b - a));
+      hits.push_back(it->second);
+    }
+    if (hits.size() == 2) section.segments.emplace_back(hits[0], hits[1]);
+  }
+  return section;
+}
+
 // Connected pieces of the horizontal slice y = h: the (x, z) points where mesh edges cross the plane.
 inline std::vector<std::vector<Point2>> slice(const TriangleMesh& mesh, double h) {
-  std::map<std::pair<int, int>, int> edgeId;
-  std::vector<Point2> points;
-  std::vector<int> parent;
+  const PlaneSection section = planeSection(mesh, Eigen::Vector3d(0.0, h, 0.0), Eigen::Vector3d::UnitY());
+  std::vector<int> parent(section.points.size());
+  std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](int i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
   };
-  auto crossing = [&](int a, int b) {
-    const auto key = std::minmax(a, b);
-    auto [it, inserted] = edgeId.try_emplace(key, static_cast<int>(points.size()));
-    if (inserted) {
-      const Eigen::Vector3d pa = mesh.vertices.row(a), pb = mesh.vertices.row(b);
-      const double t = (h - pa.y()) / (pb.y() - pa.y());
-      const Eigen::Vector3d p = pa + t * (pb - pa);
-      points.emplace_back(p.x(), p.z());
-      parent.push_back(it->second);
-    }
-    return it->second;
-  };
-  for (int f = 0; f < mesh.triangleCount(); ++f) {
-    std::vector<int> hits;
-    for (int k = 0; k < 3; ++k) {
-      const int a = mesh.triangles(f, k), b = mesh.triangles(f, (k + 1) % 3);
-      if ((mesh.vertices(a, 1) - h) * (mesh.vertices(b, 1) - h) < 0) hits.push_back(crossing(a, b));
-    }
-    if (hits.size() == 2) parent[find(hits[0])] = find(hits[1]);
-  }
+  for (const auto& [a, b] : section.segments) parent[find(a)] = find(b);
   std::map<int, std::vector<Point2>> pieces;
-  for (int i = 0; i < static_cast<int>(points.size()); ++i) pieces[find(i)].push_back(points[i]);
+  for (int i = 0; i < static_cast<int>(section.points.size()); ++i)
+    pieces[find(i)].emplace_back(section.points[i].x(), section.points[i].z());
   std::vector<std::vector<Point2>> out;
   for (auto& [root, piece] : pieces) out.push_back(std::move(piece));
   return out;
@@ -113,18 +121,10 @@ inline double thighGirth(const TriangleMesh& mesh, double h) {
 // sampled every 2 mm. Where a ledge rings the body the outline steps, far steeper than a real body's outline between
 // the knees and the waist (docs/MANNEQUIN.md, "Smoothness").
 inline double steepestSideOutline(const TriangleMesh& mesh, double x0, double lo, double hi) {
+  const PlaneSection section = planeSection(mesh, Eigen::Vector3d(x0, 0.0, 0.0), Eigen::Vector3d::UnitX());
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> segments;  // (y, z) ends
-  for (int f = 0; f < mesh.triangleCount(); ++f) {
-    std::vector<Eigen::Vector2d> ends;
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d a = mesh.vertices.row(mesh.triangles(f, k));
-      const Eigen::Vector3d b = mesh.vertices.row(mesh.triangles(f, (k + 1) % 3));
-      if ((a.x() < x0) == (b.x() < x0)) continue;
-      const Eigen::Vector3d p = a + (x0 - a.x()) / (b.x() - a.x()) * (b - a);
-      ends.emplace_back(p.y(), p.z());
-    }
-    if (ends.size() == 2) segments.emplace_back(ends[0], ends[1]);
-  }
+  for (const auto& [a, b] : section.segments)
+    segments.emplace_back(section.points[a].tail<2>(), section.points[b].tail<2>());
   constexpr double kStep = 0.002;
   double steepest = 0.0, lastFront = 0.0, lastBack = 0.0;
   bool haveLast = false;
@@ -161,19 +161,11 @@ inline std::vector<double> armGirths(const TriangleMesh& mesh, double xFrom) {
   std::vector<double> girths;
   for (double s = first + 0.01; s < last - 0.005; s += 0.01) {
     const Eigen::Vector3d origin = centre + s * axis;
-    std::map<std::pair<int, int>, Point2> crossings;  // one point per crossed edge
-    for (int f = 0; f < mesh.triangleCount(); ++f) {
-      for (int k = 0; k < 3; ++k) {
-        const int i = mesh.triangles(f, k), j = mesh.triangles(f, (k + 1) % 3);
-        const Eigen::Vector3d a = mesh.vertices.row(i), b = mesh.vertices.row(j);
-        const double da = (a - origin).dot(axis), db = (b - origin).dot(axis);
-        if ((da < 0) == (db < 0)) continue;
-        const Eigen::Vector3d r = a + da / (da - db) * (b - a) - origin;
-        if (r.norm() < 0.08) crossings.emplace(std::minmax(i, j), Point2(r.dot(e1), r.dot(e2)));
-      }
-    }
     std::vector<Point2> points;
-    for (const auto& [edge, point] : crossings) points.push_back(point);
+    for (const Eigen::Vector3d& p : planeSection(mesh, origin, axis).points) {
+      const Eigen::Vector3d r = p - origin;
+      if (r.norm() < 0.08) points.emplace_back(r.dot(e1), r.dot(e2));
+    }
     girths.push_back(hullPerimeter(points));
   }
   return girths;
