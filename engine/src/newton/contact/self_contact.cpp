@@ -22,7 +22,6 @@ SelfContactEnergy::SelfContactEnergy(const Eigen::MatrixX3i& triangles, int vert
 
 void SelfContactEnergy::beginStep(const StepContext& ctx) {
   std::lock_guard lock(m_mutex);
-  m_reference.resize(0);
   std::fill(m_excluded.begin(), m_excluded.end(), 0);
   const auto& tris = m_proximity.triangles();
   m_crossings = collision::selfIntersectingPairs(*ctx.previousPositions, tris, m_merged);
@@ -45,16 +44,6 @@ void SelfContactEnergy::ensureCandidates(const Eigen::VectorXd& x) const {
     if (2.0 * std::sqrt(maxMove2) <= m_margin) return;
   }
   m_proximity.findPairs(x, m_params.thickness + m_margin, m_vertexTriangle, m_edgeEdge);
-  const auto& tris = m_proximity.triangles();
-  const auto& edges = m_proximity.edges();
-  std::erase_if(m_vertexTriangle, [&](const collision::VertexTrianglePair& p) {
-    return m_excluded[p.vertex] || m_excluded[tris(p.triangle, 0)] || m_excluded[tris(p.triangle, 1)] ||
-           m_excluded[tris(p.triangle, 2)];
-  });
-  std::erase_if(m_edgeEdge, [&](const collision::EdgeEdgePair& p) {
-    return m_excluded[edges(p.first, 0)] || m_excluded[edges(p.first, 1)] || m_excluded[edges(p.second, 0)] ||
-           m_excluded[edges(p.second, 1)];
-  });
   m_reference = x;
   ++m_queries;
 }
@@ -74,14 +63,18 @@ std::vector<SelfContactEnergy::Evaluated> SelfContactEnergy::evaluate(const Eige
     if (k < vt) {
       const auto& p = m_vertexTriangle[k];
       e.vertices = {p.vertex, tris(p.triangle, 0), tris(p.triangle, 1), tris(p.triangle, 2)};
-      e.distance = collision::pointTriangleSquaredDistance(at(e.vertices[0]), at(e.vertices[1]), at(e.vertices[2]),
-                                                           at(e.vertices[3]));
     } else {
       const auto& p = m_edgeEdge[k - vt];
       e.vertices = {edges(p.first, 0), edges(p.first, 1), edges(p.second, 0), edges(p.second, 1)};
+    }
+    for (int v : e.vertices)
+      if (m_excluded[v]) return;  // on a triangle that crossed another at the step's start
+    if (k < vt)
+      e.distance = collision::pointTriangleSquaredDistance(at(e.vertices[0]), at(e.vertices[1]), at(e.vertices[2]),
+                                                           at(e.vertices[3]));
+    else
       e.distance = collision::edgeEdgeSquaredDistance(at(e.vertices[0]), at(e.vertices[1]), at(e.vertices[2]),
                                                       at(e.vertices[3]));
-    }
     active[k] = penaltyFromSquaredDistance(e.distance, m_params.stiffness, m_params.thickness,
                                            withHessian && m_params.projectHessian, e.energy, e.gradient, e.hessian);
   });

@@ -250,6 +250,46 @@ TEST(CollisionEnergyTest, SelfContactCandidatesFollowLargeMoves) {
   EXPECT_DOUBLE_EQ(lagged.value(layers.x), fresh.value(layers.x));
 }
 
+// Two pairs of parallel triangles 3 mm apart (below the 6 mm thickness), side by side: T0 under T1, T2 under T3.
+VectorXd stackedPairs(Eigen::MatrixX3i& triangles) {
+  triangles.resize(4, 3);
+  triangles << 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11;
+  VectorXd x(36);
+  x << 0, 0, 0, 0.1, 0, 0, 0, 0.1, 0,                          // T0
+      0.02, 0.02, 0.003, 0.06, 0.02, 0.003, 0.02, 0.06, 0.001,  // T1
+      0.3, 0, 0, 0.4, 0, 0, 0.3, 0.1, 0,                        // T2
+      0.32, 0.02, 0.003, 0.36, 0.02, 0.003, 0.32, 0.06, 0.003;  // T3
+  return x;
+}
+
+TEST(CollisionEnergyTest, SelfContactKeepsItsCandidatesAcrossStepsAndExcludesNewCrossings) {
+  Eigen::MatrixX3i triangles;
+  const VectorXd first = stackedPairs(triangles);
+  ContactParameters params;
+  params.thickness = 0.006;
+  SelfContactEnergy kept(triangles, 12, {}, params);
+  newton::StepContext ctx;
+  ctx.previousPositions = &first;
+  kept.beginStep(ctx);
+  ASSERT_EQ(kept.queryCount(), 1);
+  ASSERT_TRUE(kept.crossings().empty());
+  // The next step: T1's third corner 2.5 mm lower, through T0. No vertex moved half the margin: no new query.
+  VectorXd second = first;
+  second[3 * 5 + 2] -= 0.0025;
+  ctx.previousPositions = &second;
+  kept.beginStep(ctx);
+  EXPECT_EQ(kept.queryCount(), 1);
+  ASSERT_EQ(kept.crossings().size(), 1u);
+  // The same energy as one that gathers its candidates afresh there: T0 and T1 take no part, T2 and T3 still repel.
+  SelfContactEnergy fresh(triangles, 12, {}, params);
+  fresh.beginStep(ctx);
+  EXPECT_GT(fresh.value(second), 0.0);
+  EXPECT_DOUBLE_EQ(kept.value(second), fresh.value(second));
+  VectorXd separated = second;
+  for (int v = 9; v < 12; ++v) separated[3 * v + 2] += 0.1;  // T3 lifted away: only the excluded pair is near
+  EXPECT_EQ(fresh.value(separated), 0.0);
+}
+
 // Lagged friction contacts on 5 vertices: vertex 0 against a floor, and vertex 1 against the edges' point of
 // vertices 2-4 (an edge-edge-like stencil) with a slanted normal.
 std::vector<FrictionEnergy::LaggedContact> frictionContacts() {

@@ -4,10 +4,11 @@
 //   E(x) = sum_pairs 0.5 k (thickness - d_pair(x))^2,  d_pair = unsigned distance between the closest points.
 // Exact for every x: candidate pairs are gathered through the BVH within thickness + margin around reference
 // positions x_ref; as long as no vertex has moved more than margin / 2 from x_ref no other pair can be within
-// the thickness, so evaluations only loop over candidates. A larger move triggers a new BVH query around x.
+// the thickness, so evaluations only loop over candidates, from step to step while the cloth moves little. A larger
+// move triggers a new BVH query around x.
 // A penalty cannot tell the two sides of a crossing apart: where the cloth already passes through itself it would
-// hold the tangle in place. So at the start of every step the triangles that cross another are found, and their
-// vertices take no part in this term during the step: the cloth's own forces pull such a tangle free.
+// hold the tangle in place. So at the start of every step the triangles that cross another are found, and the pairs
+// with a vertex on them take no part in this term during the step: the cloth's own forces pull such a tangle free.
 #include <Eigen/Core>
 #include <mutex>
 #include <utility>
