@@ -18,20 +18,84 @@ SelfContactEnergy::SelfContactEnergy(const Eigen::MatrixX3i& triangles, int vert
       m_margin(margin > 0.0 ? margin : params.thickness),
       m_proximity(triangles, vertexCount, mergedVertices),
       m_merged(mergedVertices),
-      m_excluded(vertexCount, 0) {}
+      m_excluded(vertexCount, 0) {
+  const Eigen::MatrixX2i& edges = m_proximity.edges();
+  const int faces = static_cast<int>(triangles.rows());
+  std::vector<std::pair<int, int>> byVertex, byEdge;  // (vertex or edge, triangle)
+  for (int f = 0; f < faces; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = triangles(f, k), b = triangles(f, (k + 1) % 3);
+      byVertex.emplace_back(a, f);
+      const auto [lo, hi] = std::minmax(a, b);
+      int first = 0, count = static_cast<int>(edges.rows());  // edges are sorted: binary search for (lo, hi)
+      while (count > 0) {
+        const int half = count / 2, mid = first + half;
+        if (std::make_pair(edges(mid, 0), edges(mid, 1)) < std::make_pair(lo, hi)) {
+          first = mid + 1;
+          count -= half + 1;
+        } else {
+          count = half;
+        }
+      }
+      byEdge.emplace_back(first, f);
+    }
+  auto compress = [](std::vector<std::pair<int, int>>& pairs, int n, std::vector<int>& start, std::vector<int>& items) {
+    std::sort(pairs.begin(), pairs.end());
+    start.assign(n + 1, 0);
+    for (const auto& [key, f] : pairs) ++start[key + 1];
+    for (int i = 0; i < n; ++i) start[i + 1] += start[i];
+    items.clear();
+    for (const auto& [key, f] : pairs) items.push_back(f);
+  };
+  compress(byVertex, vertexCount, m_vertexTriangleStart, m_vertexTriangles);
+  compress(byEdge, static_cast<int>(edges.rows()), m_edgeTriangleStart, m_edgeTriangles);
+}
 
 void SelfContactEnergy::beginStep(const StepContext& ctx) {
   std::lock_guard lock(m_mutex);
-  std::fill(m_excluded.begin(), m_excluded.end(), 0);
+  const Eigen::VectorXd& x = *ctx.previousPositions;
+  const int queriesBefore = m_queries;
+  ensureCandidates(x);
+  const bool sameCandidates = m_crossingsAtQuery == queriesBefore && m_queries == queriesBefore;
   const auto& tris = m_proximity.triangles();
-  m_crossings = collision::selfIntersectingPairs(*ctx.previousPositions, tris, m_merged);
+  m_crossings = sameCandidates ? crossingsNearCandidates(x) : collision::selfIntersectingPairs(x, tris, m_merged);
+  m_crossingsAtQuery = m_queries;
+  std::fill(m_excluded.begin(), m_excluded.end(), 0);
   for (const auto& [t, u] : m_crossings) {
     for (int k = 0; k < 3; ++k) {
       m_excluded[tris(t, k)] = 1;
       m_excluded[tris(u, k)] = 1;
     }
   }
-  ensureCandidates(*ctx.previousPositions);
+}
+
+std::vector<std::pair<int, int>> SelfContactEnergy::crossingsNearCandidates(const Eigen::VectorXd& x) const {
+  std::vector<std::pair<int, int>> pairs = m_crossings;
+  auto addAll = [&](const std::vector<int>& start, const std::vector<int>& items, int key, int other) {
+    for (int i = start[key]; i < start[key + 1]; ++i)
+      if (items[i] != other) pairs.emplace_back(std::minmax(items[i], other));
+  };
+  for (const collision::VertexTrianglePair& p : m_vertexTriangle)
+    addAll(m_vertexTriangleStart, m_vertexTriangles, p.vertex, p.triangle);
+  for (const collision::EdgeEdgePair& p : m_edgeEdge)
+    for (int i = m_edgeTriangleStart[p.second]; i < m_edgeTriangleStart[p.second + 1]; ++i)
+      addAll(m_edgeTriangleStart, m_edgeTriangles, p.first, m_edgeTriangles[i]);
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  const auto& tris = m_proximity.triangles();
+  auto at = [&](int t, int k) -> Eigen::Vector3d { return x.segment<3>(3 * tris(t, k)); };
+  std::vector<char> crossing(pairs.size(), 0);
+  tbb::parallel_for(std::size_t(0), pairs.size(), [&](std::size_t i) {
+    const auto [t, u] = pairs[i];
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        if (m_proximity.canonical(tris(t, a)) == m_proximity.canonical(tris(u, b))) return;  // neighbours
+    crossing[i] = collision::trianglesIntersect(at(t, 0), at(t, 1), at(t, 2), at(u, 0), at(u, 1), at(u, 2));
+  });
+  std::vector<std::pair<int, int>> out;
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+    if (crossing[i]) out.push_back(pairs[i]);
+  return out;
 }
 
 void SelfContactEnergy::ensureCandidates(const Eigen::VectorXd& x) const {

@@ -9,6 +9,7 @@
 #include "drape/newton/contact/contact_factory.h"
 #include "drape/newton/contact/friction.h"
 #include "drape/newton/contact/self_contact.h"
+#include "drape/collision/self_intersection.h"
 #include "drape/geometry/primitives.h"
 
 namespace drape::collision {
@@ -288,6 +289,48 @@ TEST(CollisionEnergyTest, SelfContactKeepsItsCandidatesAcrossStepsAndExcludesNew
   VectorXd separated = second;
   for (int v = 9; v < 12; ++v) separated[3 * v + 2] += 0.1;  // T3 lifted away: only the excluded pair is near
   EXPECT_EQ(fresh.value(separated), 0.0);
+}
+
+// Two 9 x 9 grids of 1 cm, 2 mm apart; a patch of the upper one is pushed down through the lower one, 0.8 mm a
+// step, with every vertex jittered by up to 0.3 mm.
+TEST(CollisionEnergyTest, SelfContactFindsEveryCrossingOfEveryStep) {
+  constexpr int n = 9;
+  const int perLayer = n * n;
+  Eigen::MatrixX3i triangles(4 * (n - 1) * (n - 1), 3);
+  VectorXd x(6 * perLayer);
+  int f = 0;
+  for (int layer = 0; layer < 2; ++layer) {
+    const int base = layer * perLayer;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) x.segment<3>(3 * (base + i * n + j)) = Eigen::Vector3d(0.01 * i, 0.01 * j, 0.002 * layer);
+    for (int i = 0; i + 1 < n; ++i)
+      for (int j = 0; j + 1 < n; ++j) {
+        const int v = base + i * n + j;
+        triangles.row(f++) << v, v + n, v + 1;
+        triangles.row(f++) << v + 1, v + n, v + n + 1;
+      }
+  }
+  ContactParameters params;
+  params.thickness = 0.006;
+  SelfContactEnergy energy(triangles, 2 * perLayer, {}, params);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> jitter(-0.0003, 0.0003);
+  int steps = 0, withCrossings = 0;
+  for (int step = 0; step < 12; ++step, ++steps) {
+    newton::StepContext ctx;
+    ctx.previousPositions = &x;
+    energy.beginStep(ctx);
+    const auto expected = selfIntersectingPairs(x, triangles);
+    EXPECT_EQ(energy.crossings(), expected) << "step " << step;
+    withCrossings += !expected.empty();
+    for (int v = 0; v < 2 * perLayer; ++v) {
+      for (int k = 0; k < 3; ++k) x[3 * v + k] += jitter(rng);
+      const int i = (v % perLayer) / n, j = v % n;
+      if (v >= perLayer && i >= 3 && i <= 5 && j >= 3 && j <= 5) x[3 * v + 2] -= 0.0008;
+    }
+  }
+  EXPECT_GE(withCrossings, 3);
+  EXPECT_LT(energy.queryCount(), steps);  // some steps kept their candidates and tested only near them
 }
 
 // Lagged friction contacts on 5 vertices: vertex 0 against a floor, and vertex 1 against the edges' point of

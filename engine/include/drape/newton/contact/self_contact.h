@@ -9,6 +9,10 @@
 // A penalty cannot tell the two sides of a crossing apart: where the cloth already passes through itself it would
 // hold the tangle in place. So at the start of every step the triangles that cross another are found, and the pairs
 // with a vertex on them take no part in this term during the step: the cloth's own forces pull such a tangle free.
+// Two triangles that share no vertex and did not cross at the last step's start can cross at this one only if they
+// touched in between, through a vertex-triangle or edge-edge pair: while the candidates have been valid for both
+// states (and so for the straight path between them), only the last crossings and the triangles of the candidates
+// are tested; after a new query, every triangle.
 #include <Eigen/Core>
 #include <mutex>
 #include <utility>
@@ -59,6 +63,8 @@ class SelfContactEnergy : public Energy {
     collision::SquaredDistanceDerivatives distance;
   };
   void ensureCandidates(const Eigen::VectorXd& x) const;
+  // The crossing pairs at x among the last step's crossings and the triangle pairs of the candidates.
+  std::vector<std::pair<int, int>> crossingsNearCandidates(const Eigen::VectorXd& x) const;
   // Active pairs at x with their penalty derivatives (Hessian only when wanted).
   std::vector<Evaluated> evaluate(const Eigen::VectorXd& x, bool withHessian) const;
 
@@ -73,6 +79,9 @@ class SelfContactEnergy : public Energy {
   mutable std::vector<collision::VertexTrianglePair> m_vertexTriangle;
   mutable std::vector<collision::EdgeEdgePair> m_edgeEdge;
   mutable int m_queries = 0;
+  int m_crossingsAtQuery = -1;  // m_queries when the crossings were last found (-1: never)
+  // The triangles around each vertex and each edge of SelfProximity::edges(): [start[i], start[i + 1]).
+  std::vector<int> m_vertexTriangleStart, m_vertexTriangles, m_edgeTriangleStart, m_edgeTriangles;
 };
 
 }  // namespace drape::newton
