@@ -10,6 +10,19 @@
 #include "drape/collision/self_intersection.h"
 
 namespace drape::newton {
+namespace {
+
+// (key, item) pairs with keys in [0, n) as lists: key k's items are items[start[k]] .. items[start[k + 1] - 1].
+void groupByKey(std::vector<std::pair<int, int>>& pairs, int n, std::vector<int>& start, std::vector<int>& items) {
+  std::sort(pairs.begin(), pairs.end());
+  start.assign(n + 1, 0);
+  for (const auto& [key, item] : pairs) ++start[key + 1];
+  for (int k = 0; k < n; ++k) start[k + 1] += start[k];
+  items.clear();
+  for (const auto& [key, item] : pairs) items.push_back(item);
+}
+
+}  // namespace
 
 SelfContactEnergy::SelfContactEnergy(const Eigen::MatrixX3i& triangles, int vertexCount,
                                      const std::vector<std::pair<int, int>>& mergedVertices, ContactParameters params,
@@ -20,35 +33,18 @@ SelfContactEnergy::SelfContactEnergy(const Eigen::MatrixX3i& triangles, int vert
       m_merged(mergedVertices),
       m_excluded(vertexCount, 0) {
   const Eigen::MatrixX2i& edges = m_proximity.edges();
-  const int faces = static_cast<int>(triangles.rows());
+  std::vector<std::pair<int, int>> sortedEdges(edges.rows());  // uniqueEdges' order
+  for (Eigen::Index e = 0; e < edges.rows(); ++e) sortedEdges[e] = {edges(e, 0), edges(e, 1)};
   std::vector<std::pair<int, int>> byVertex, byEdge;  // (vertex or edge, triangle)
-  for (int f = 0; f < faces; ++f)
+  for (int f = 0; f < static_cast<int>(triangles.rows()); ++f)
     for (int k = 0; k < 3; ++k) {
       const int a = triangles(f, k), b = triangles(f, (k + 1) % 3);
       byVertex.emplace_back(a, f);
-      const auto [lo, hi] = std::minmax(a, b);
-      int first = 0, count = static_cast<int>(edges.rows());  // edges are sorted: binary search for (lo, hi)
-      while (count > 0) {
-        const int half = count / 2, mid = first + half;
-        if (std::make_pair(edges(mid, 0), edges(mid, 1)) < std::make_pair(lo, hi)) {
-          first = mid + 1;
-          count -= half + 1;
-        } else {
-          count = half;
-        }
-      }
-      byEdge.emplace_back(first, f);
+      const auto edge = std::lower_bound(sortedEdges.begin(), sortedEdges.end(), std::pair<int, int>(std::minmax(a, b)));
+      byEdge.emplace_back(static_cast<int>(edge - sortedEdges.begin()), f);
     }
-  auto compress = [](std::vector<std::pair<int, int>>& pairs, int n, std::vector<int>& start, std::vector<int>& items) {
-    std::sort(pairs.begin(), pairs.end());
-    start.assign(n + 1, 0);
-    for (const auto& [key, f] : pairs) ++start[key + 1];
-    for (int i = 0; i < n; ++i) start[i + 1] += start[i];
-    items.clear();
-    for (const auto& [key, f] : pairs) items.push_back(f);
-  };
-  compress(byVertex, vertexCount, m_vertexTriangleStart, m_vertexTriangles);
-  compress(byEdge, static_cast<int>(edges.rows()), m_edgeTriangleStart, m_edgeTriangles);
+  groupByKey(byVertex, vertexCount, m_vertexTriangleStart, m_vertexTriangles);
+  groupByKey(byEdge, static_cast<int>(sortedEdges.size()), m_edgeTriangleStart, m_edgeTriangles);
 }
 
 void SelfContactEnergy::beginStep(const StepContext& ctx) {
