@@ -5,11 +5,11 @@
 #include <Eigen/Dense>
 #include <random>
 
+#include "drape/collision/self_intersection.h"
 #include "drape/newton/contact/avatar_contact.h"
 #include "drape/newton/contact/contact_factory.h"
 #include "drape/newton/contact/friction.h"
 #include "drape/newton/contact/self_contact.h"
-#include "drape/collision/self_intersection.h"
 #include "drape/geometry/primitives.h"
 
 namespace drape::collision {
