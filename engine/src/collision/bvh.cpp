@@ -80,7 +80,9 @@ void Bvh::build(const std::vector<BoundingBox>& boxes) {
     const int gamma = i + split * d + std::min(d, 0);
     m_nodes[i].left = std::min(i, j) == gamma ? leafBase + gamma : gamma;
     m_nodes[i].right = std::max(i, j) == gamma + 1 ? leafBase + gamma + 1 : gamma + 1;
+    m_nodes[i].last = std::max(i, j);
   });
+  for (int k = 0; k < n; ++k) m_nodes[leafBase + k].last = k;
 
   // Breadth-first order from the root, reversed: children come before parents.
   if (n > 1) {

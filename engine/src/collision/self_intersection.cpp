@@ -1,5 +1,6 @@
 #include "drape/collision/self_intersection.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -12,7 +13,7 @@
 namespace drape::collision {
 namespace {
 
-// Every crossing pair (t, u), t < u, found by triangle t: partners[t], increasing.
+// Every crossing pair (t, u), t < u: partners[t], increasing.
 std::vector<std::vector<int>> crossingPartners(const Eigen::VectorXd& x, const Eigen::MatrixX3i& triangles,
                                                const std::vector<std::pair<int, int>>& joined) {
   const int nv = static_cast<int>(x.size() / 3);
@@ -33,18 +34,24 @@ std::vector<std::vector<int>> crossingPartners(const Eigen::VectorXd& x, const E
     boxes[t] = boxOf(p(t, 0), p(t, 1), p(t, 2));
   }
   const Bvh tree(boxes);
+  tbb::enumerable_thread_specific<std::vector<std::pair<int, int>>> found;
   tbb::parallel_for(tbb::blocked_range<int>(0, nt), [&](const tbb::blocked_range<int>& range) {
-    for (int t = range.begin(); t != range.end(); ++t) {
-      tree.forEachOverlap(boxes[t], [&](int u) {
-        if (u <= t) return;
+    auto& out = found.local();
+    for (int leaf = range.begin(); leaf != range.end(); ++leaf) {
+      const int t = tree.primitiveAt(leaf);
+      tree.forEachOverlapAfter(boxes[t], leaf, [&](int u) {
         for (int i = 0; i < 3; ++i)
           for (int j = 0; j < 3; ++j)
             if (corner(t, i) == corner(u, j)) return;  // neighbours (also across a sewn seam)
-        if (trianglesIntersect(p(t, 0), p(t, 1), p(t, 2), p(u, 0), p(u, 1), p(u, 2))) partners[t].push_back(u);
+        if (trianglesIntersect(p(t, 0), p(t, 1), p(t, 2), p(u, 0), p(u, 1), p(u, 2)))
+          out.emplace_back(std::minmax(t, u));
       });
-      std::sort(partners[t].begin(), partners[t].end());
     }
   });
+  std::vector<std::pair<int, int>> pairs;
+  for (const auto& part : found) pairs.insert(pairs.end(), part.begin(), part.end());
+  std::sort(pairs.begin(), pairs.end());
+  for (const auto& [t, u] : pairs) partners[t].push_back(u);
   return partners;
 }
 

@@ -1,5 +1,6 @@
 // Vertex-triangle pairs: each vertex box (inflated by d) against the triangle tree. Edge-edge pairs: each edge
-// box (inflated by d) against the edge tree, keeping j > i. Exact distances decide; per-thread buffers merge.
+// box (inflated by d) against the edges of the edge tree's later leaves, so that each pair is met once. Exact
+// distances decide; per-thread buffers merge.
 #include "drape/collision/self_proximity.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -120,13 +121,13 @@ void SelfProximity::findPairs(const Eigen::VectorXd& x, double d, std::vector<Ve
   const int edgeCount = static_cast<int>(m_edges.rows());
   tbb::parallel_for(tbb::blocked_range<int>(0, edgeCount), [&](const tbb::blocked_range<int>& range) {
     auto& out = localEe.local();
-    for (int e = range.begin(); e < range.end(); ++e) {
+    for (int leaf = range.begin(); leaf < range.end(); ++leaf) {
+      const int e = m_edgeTree.primitiveAt(leaf);
       const Eigen::Vector3d p0 = vertexAt(x, m_edges(e, 0));
       const Eigen::Vector3d p1 = vertexAt(x, m_edges(e, 1));
       const BoundingBox box = inflated(boxOf(p0, p1), d);
-      m_edgeTree.forEachOverlap(box, [&](int other) {
-        if (other <= e) return;
-        const EdgeEdgePair pair{e, other};
+      m_edgeTree.forEachOverlapAfter(box, leaf, [&](int other) {
+        const EdgeEdgePair pair{std::min(e, other), std::max(e, other)};
         if (adjacent(pair)) return;
         const EdgeEdgeResult r = closestPointsEdgeEdge(p0, p1, vertexAt(x, m_edges(other, 0)), vertexAt(x, m_edges(other, 1)));
         if (r.distanceSquared < d2) out.push_back(pair);

@@ -69,6 +69,36 @@ TEST(CollisionBvhTest, DuplicateCentresStillFormAValidTree) {
   EXPECT_LT(bvh.depth(), 20);  // ties split by index give a balanced tree
 }
 
+TEST(CollisionBvhTest, OverlapsAfterEachLeafFindEveryOverlappingPairOnce) {
+  std::mt19937 rng(4);
+  for (int n : {0, 1, 2, 3, 17, 800}) {
+    std::vector<BoundingBox> boxes = randomBoxes(rng, n, 0.05);
+    for (int round = 0; round < 2; ++round) {
+      Bvh bvh(boxes);
+      if (round == 1) {  // refitted to moved boxes
+        std::normal_distribution<double> shift(0.0, 0.05);
+        for (auto& b : boxes) {
+          const Vector3d s(shift(rng), shift(rng), shift(rng));
+          b.min += s;
+          b.max += s;
+        }
+        bvh.refit(boxes);
+      }
+      std::multiset<std::pair<int, int>> found;
+      for (int leaf = 0; leaf < n; ++leaf) {
+        const int a = bvh.primitiveAt(leaf);
+        bvh.forEachOverlapAfter(boxes[a], leaf, [&](int b) { found.insert(std::minmax(a, b)); });
+      }
+      std::multiset<std::pair<int, int>> expected;
+      for (int a = 0; a < n; ++a)
+        for (int b = a + 1; b < n; ++b)
+          if (overlaps(boxes[a], boxes[b])) expected.insert({a, b});
+      if (n == 800) EXPECT_GT(expected.size(), 100u);
+      EXPECT_EQ(found, expected);
+    }
+  }
+}
+
 TEST(CollisionBvhTest, NearestMatchesBruteForce) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-0.2, 1.2);

@@ -33,6 +33,13 @@ class Bvh {
   template <class Visit>
   void forEachOverlap(const BoundingBox& box, Visit&& visit) const;
 
+  // Self-overlap in pairs: primitiveAt(k) is the primitive of leaf k (leaves in Morton order), and
+  // forEachOverlapAfter(box, k, visit) calls visit only for the primitives of leaves after k. Querying every
+  // primitive's own box after its own leaf finds each overlapping pair once and skips the subtrees of the leaves before.
+  int primitiveAt(int leaf) const { return m_leafPrimitive[leaf]; }
+  template <class Visit>
+  void forEachOverlapAfter(const BoundingBox& box, int leaf, Visit&& visit) const;
+
   // Branch-and-bound nearest primitive to p. primDistance2(primitive) returns the exact squared distance of the
   // primitive to p. On entry bestDistance2 is an upper bound (infinity for none); on return it is the smallest
   // distance found below it, and the result is the primitive reaching it (-1 when none beat the bound).
@@ -44,6 +51,7 @@ class Bvh {
     BoundingBox box;
     int left = -1;   // child node indices; internal nodes are [0, n-1), leaves [n-1, 2n-1)
     int right = -1;
+    int last = 0;  // the last leaf position under the node
   };
   bool isLeaf(int node) const { return node >= m_count - 1; }
   int leafPrimitive(int node) const { return m_leafPrimitive[node - (m_count - 1)]; }
@@ -69,6 +77,24 @@ void Bvh::forEachOverlap(const BoundingBox& box, Visit&& visit) const {
     const Node& n = m_nodes[node];
     if (overlaps(m_nodes[n.left].box, box)) stack[top++] = n.left;
     if (overlaps(m_nodes[n.right].box, box)) stack[top++] = n.right;
+  }
+}
+
+template <class Visit>
+void Bvh::forEachOverlapAfter(const BoundingBox& box, int leaf, Visit&& visit) const {
+  if (m_count == 0 || m_nodes[0].last <= leaf || !overlaps(m_nodes[0].box, box)) return;
+  std::array<int, 128> stack;
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const int node = stack[--top];
+    if (isLeaf(node)) {
+      visit(leafPrimitive(node));
+      continue;
+    }
+    const Node& n = m_nodes[node];
+    if (m_nodes[n.left].last > leaf && overlaps(m_nodes[n.left].box, box)) stack[top++] = n.left;
+    if (m_nodes[n.right].last > leaf && overlaps(m_nodes[n.right].box, box)) stack[top++] = n.right;
   }
 }
 
