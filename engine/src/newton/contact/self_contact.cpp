@@ -45,6 +45,72 @@ SelfContactEnergy::SelfContactEnergy(const Eigen::MatrixX3i& triangles, int vert
     }
   groupByKey(byVertex, vertexCount, m_vertexTriangleStart, m_vertexTriangles);
   groupByKey(byEdge, static_cast<int>(sortedEdges.size()), m_edgeTriangleStart, m_edgeTriangles);
+  // Triangles sharing an edge, across stitched seams too (an edge is known by its vertices' representatives), and
+  // the pieces of cloth they make up.
+  std::vector<std::pair<std::pair<int, int>, int>> byCanonicalEdge;
+  for (int f = 0; f < static_cast<int>(triangles.rows()); ++f)
+    for (int k = 0; k < 3; ++k)
+      byCanonicalEdge.push_back({std::minmax(m_proximity.canonical(triangles(f, k)),
+                                             m_proximity.canonical(triangles(f, (k + 1) % 3))),
+                                 f});
+  std::sort(byCanonicalEdge.begin(), byCanonicalEdge.end());
+  std::vector<std::pair<int, int>> neighbours;
+  for (std::size_t i = 0, j = 0; i < byCanonicalEdge.size(); i = j) {
+    while (j < byCanonicalEdge.size() && byCanonicalEdge[j].first == byCanonicalEdge[i].first) ++j;
+    for (std::size_t a = i; a < j; ++a)
+      for (std::size_t b = i; b < j; ++b)
+        if (a != b) neighbours.emplace_back(byCanonicalEdge[a].second, byCanonicalEdge[b].second);
+  }
+  groupByKey(neighbours, static_cast<int>(triangles.rows()), m_neighbourStart, m_neighbours);
+  m_piece = components(std::vector<char>(triangles.rows(), 1));
+}
+
+std::vector<int> SelfContactEnergy::components(const std::vector<char>& included) const {
+  std::vector<int> component(included.size(), -1);
+  std::vector<int> stack;
+  int count = 0;
+  for (int seed = 0; seed < static_cast<int>(included.size()); ++seed) {
+    if (!included[seed] || component[seed] >= 0) continue;
+    component[seed] = count;
+    stack.assign(1, seed);
+    while (!stack.empty()) {
+      const int f = stack.back();
+      stack.pop_back();
+      for (int i = m_neighbourStart[f]; i < m_neighbourStart[f + 1]; ++i) {
+        const int g = m_neighbours[i];
+        if (included[g] && component[g] < 0) {
+          component[g] = count;
+          stack.push_back(g);
+        }
+      }
+    }
+    ++count;
+  }
+  return component;
+}
+
+void SelfContactEnergy::excludeAroundCrossings() {
+  std::fill(m_excluded.begin(), m_excluded.end(), 0);
+  if (m_crossings.empty()) return;
+  const auto& tris = m_proximity.triangles();
+  const int faces = static_cast<int>(tris.rows());
+  std::vector<char> free(faces, 1);
+  for (const auto& [t, u] : m_crossings) free[t] = free[u] = 0;
+  // Cut along its crossing triangles, a piece falls into sides; the one with the most triangles stays in contact.
+  const std::vector<int> side = components(free);
+  const int sides = 1 + *std::max_element(side.begin(), side.end());
+  std::vector<int> size(std::max(sides, 0), 0);
+  for (int f = 0; f < faces; ++f)
+    if (side[f] >= 0) ++size[side[f]];
+  std::vector<int> largest(1 + *std::max_element(m_piece.begin(), m_piece.end()), -1);
+  for (int f = 0; f < faces; ++f) {
+    if (side[f] < 0) continue;
+    int& best = largest[m_piece[f]];
+    if (best < 0 || size[side[f]] > size[best]) best = side[f];
+  }
+  for (int f = 0; f < faces; ++f)
+    if (side[f] < 0 || side[f] != largest[m_piece[f]])
+      for (int k = 0; k < 3; ++k) m_excluded[tris(f, k)] = 1;
 }
 
 void SelfContactEnergy::beginStep(const StepContext& ctx) {
@@ -56,13 +122,7 @@ void SelfContactEnergy::beginStep(const StepContext& ctx) {
   const auto& tris = m_proximity.triangles();
   m_crossings = sameCandidates ? crossingsNearCandidates(x) : collision::selfIntersectingPairs(x, tris, m_merged);
   m_crossingsAtQuery = m_queries;
-  std::fill(m_excluded.begin(), m_excluded.end(), 0);
-  for (const auto& [t, u] : m_crossings) {
-    for (int k = 0; k < 3; ++k) {
-      m_excluded[tris(t, k)] = 1;
-      m_excluded[tris(u, k)] = 1;
-    }
-  }
+  excludeAroundCrossings();
 }
 
 std::vector<std::pair<int, int>> SelfContactEnergy::crossingsNearCandidates(const Eigen::VectorXd& x) const {

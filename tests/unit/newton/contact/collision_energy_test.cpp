@@ -333,6 +333,50 @@ TEST(CollisionEnergyTest, SelfContactFindsEveryCrossingOfEveryStep) {
   EXPECT_LT(energy.queryCount(), steps);  // some steps kept their candidates and tested only near them
 }
 
+// Two 13 x 13 grids of 1 cm, the upper 5 mm above the lower; a 5 x 5 vertex patch in the upper one's middle is pushed
+// to `patchZ`. At 1 mm below the lower grid the patch has gone through it: the triangles around it cross the lower grid,
+// while its middle vertex lies flat on the wrong side, 1 mm from the lower grid, wholly cut off by the crossing ring.
+TEST(CollisionEnergyTest, SelfContactLeavesOutWhatACrossingCutsOff) {
+  constexpr int n = 13;
+  const int perLayer = n * n;
+  Eigen::MatrixX3i triangles(4 * (n - 1) * (n - 1), 3);
+  int f = 0;
+  for (int layer = 0; layer < 2; ++layer)
+    for (int i = 0; i + 1 < n; ++i)
+      for (int j = 0; j + 1 < n; ++j) {
+        const int v = layer * perLayer + i * n + j;
+        triangles.row(f++) << v, v + n, v + 1;
+        triangles.row(f++) << v + 1, v + n, v + n + 1;
+      }
+  const int middle = perLayer + 6 * n + 6;
+  const auto contactsOfTheMiddle = [&](double patchZ, std::size_t& crossings) {
+    VectorXd x(6 * perLayer);
+    for (int layer = 0; layer < 2; ++layer)
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          const bool patch = layer == 1 && i >= 4 && i <= 8 && j >= 4 && j <= 8;
+          x.segment<3>(3 * (layer * perLayer + i * n + j)) =
+              Eigen::Vector3d(0.01 * i + 0.001 * layer, 0.01 * j + 0.001 * layer, layer == 0 ? 0.0 : patch ? patchZ : 0.005);
+        }
+    ContactParameters params;
+    params.thickness = 0.003;
+    SelfContactEnergy energy(triangles, 2 * perLayer, {}, params);
+    newton::StepContext ctx;
+    ctx.previousPositions = &x;
+    energy.beginStep(ctx);
+    crossings = energy.crossings().size();
+    int count = 0;
+    for (const collision::ContactStencil& s : energy.contacts(x))
+      count += static_cast<int>(std::count(s.vertices.begin(), s.vertices.begin() + s.count, middle));
+    return count;
+  };
+  std::size_t crossings = 0;
+  EXPECT_GT(contactsOfTheMiddle(0.001, crossings), 0) << "1 mm above the lower grid: in contact";
+  EXPECT_EQ(crossings, 0u);
+  EXPECT_EQ(contactsOfTheMiddle(-0.001, crossings), 0) << "1 mm below, through it: cut off, no contact";
+  EXPECT_GT(crossings, 10u);
+}
+
 // Lagged friction contacts on 5 vertices: vertex 0 against a floor, and vertex 1 against the edges' point of
 // vertices 2-4 (an edge-edge-like stencil) with a slanted normal.
 std::vector<FrictionEnergy::LaggedContact> frictionContacts() {

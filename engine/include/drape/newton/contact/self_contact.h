@@ -8,7 +8,10 @@
 // move triggers a new BVH query around x.
 // A penalty cannot tell the two sides of a crossing apart: where the cloth already passes through itself it would
 // hold the tangle in place. So at the start of every step the triangles that cross another are found, and the pairs
-// with a vertex on them take no part in this term during the step: the cloth's own forces pull such a tangle free.
+// with a vertex on them take no part in this term during the step. Nor do the pairs with a vertex on a side that the
+// crossing triangles cut off from the rest of their piece of cloth (all but the side with the most triangles): the tip
+// of a fold pushed through another layer lies wholly on the wrong side, and its contacts there would push it further
+// in. The cloth's own forces and the intersection contour pull such a tangle free.
 // Two triangles that share no vertex and did not cross at the last step's start can cross at this one only if they
 // touched in between, through a vertex-triangle or edge-edge pair: while the candidates have been valid for both
 // states (and so for the straight path between them), only the last crossings and the triangles of the candidates
@@ -65,6 +68,11 @@ class SelfContactEnergy : public Energy {
   void ensureCandidates(const Eigen::VectorXd& x) const;
   // The crossing pairs at x among the last step's crossings and the triangle pairs of the candidates.
   std::vector<std::pair<int, int>> crossingsNearCandidates(const Eigen::VectorXd& x) const;
+  // Connected components of the included triangles (neighbours across edges and stitched seams): a component id per
+  // triangle, -1 where not included.
+  std::vector<int> components(const std::vector<char>& included) const;
+  // m_excluded from m_crossings: the vertices of the crossing triangles and of every side they cut off.
+  void excludeAroundCrossings();
   // Active pairs at x with their penalty derivatives (Hessian only when wanted).
   std::vector<Evaluated> evaluate(const Eigen::VectorXd& x, bool withHessian) const;
 
@@ -82,6 +90,8 @@ class SelfContactEnergy : public Energy {
   int m_crossingsAtQuery = -1;  // m_queries when the crossings were last found (-1: never)
   // The triangles around each vertex and each edge of SelfProximity::edges(): [start[i], start[i + 1]).
   std::vector<int> m_vertexTriangleStart, m_vertexTriangles, m_edgeTriangleStart, m_edgeTriangles;
+  std::vector<int> m_neighbourStart, m_neighbours;  // the triangles sharing an edge with each triangle
+  std::vector<int> m_piece;                          // per triangle: its connected piece of cloth
 };
 
 }  // namespace drape::newton
