@@ -26,6 +26,16 @@ std::vector<BoundingBox> randomBoxes(std::mt19937& rng, int n, double size) {
   return boxes;
 }
 
+// Every box moved by a random shift (a refit's input).
+void shiftBoxes(std::mt19937& rng, std::vector<BoundingBox>& boxes) {
+  std::normal_distribution<double> shift(0.0, 0.05);
+  for (auto& b : boxes) {
+    const Vector3d s(shift(rng), shift(rng), shift(rng));
+    b.min += s;
+    b.max += s;
+  }
+}
+
 void expectOverlapsMatch(const Bvh& bvh, const std::vector<BoundingBox>& boxes, const BoundingBox& query) {
   std::set<int> found;
   bvh.forEachOverlap(query, [&](int i) { EXPECT_TRUE(found.insert(i).second) << "reported twice: " << i; });
@@ -45,12 +55,7 @@ TEST(CollisionBvhTest, OverlapQueriesMatchBruteForceBeforeAndAfterRefit) {
     const auto queries = randomBoxes(rng, 50, 0.1);
     for (const auto& q : queries) expectOverlapsMatch(bvh, boxes, q);
     // Move every box and refit: the same queries must still be exact.
-    std::normal_distribution<double> shift(0.0, 0.05);
-    for (auto& b : boxes) {
-      const Vector3d s(shift(rng), shift(rng), shift(rng));
-      b.min += s;
-      b.max += s;
-    }
+    shiftBoxes(rng, boxes);
     bvh.refit(boxes);
     for (const auto& q : queries) expectOverlapsMatch(bvh, boxes, q);
   }
@@ -76,12 +81,7 @@ TEST(CollisionBvhTest, OverlapsAfterEachLeafFindEveryOverlappingPairOnce) {
     for (int round = 0; round < 2; ++round) {
       Bvh bvh(boxes);
       if (round == 1) {  // refitted to moved boxes
-        std::normal_distribution<double> shift(0.0, 0.05);
-        for (auto& b : boxes) {
-          const Vector3d s(shift(rng), shift(rng), shift(rng));
-          b.min += s;
-          b.max += s;
-        }
+        shiftBoxes(rng, boxes);
         bvh.refit(boxes);
       }
       std::multiset<std::pair<int, int>> found;

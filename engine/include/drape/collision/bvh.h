@@ -31,7 +31,9 @@ class Bvh {
 
   // Calls visit(primitive) for every primitive whose box overlaps `box`.
   template <class Visit>
-  void forEachOverlap(const BoundingBox& box, Visit&& visit) const;
+  void forEachOverlap(const BoundingBox& box, Visit&& visit) const {
+    forEachOverlapAfter(box, -1, visit);
+  }
 
   // Self-overlap in pairs: primitiveAt(k) is the primitive of leaf k (leaves in Morton order), and
   // forEachOverlapAfter(box, k, visit) calls visit only for the primitives of leaves after k. Querying every
@@ -61,24 +63,6 @@ class Bvh {
   std::vector<int> m_leafPrimitive;  // leaf k -> primitive id (sorted by Morton code)
   std::vector<int> m_refitOrder;     // internal nodes, children before parents
 };
-
-template <class Visit>
-void Bvh::forEachOverlap(const BoundingBox& box, Visit&& visit) const {
-  if (m_count == 0 || !overlaps(m_nodes[0].box, box)) return;
-  std::array<int, 128> stack;
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const int node = stack[--top];
-    if (isLeaf(node)) {
-      visit(leafPrimitive(node));
-      continue;
-    }
-    const Node& n = m_nodes[node];
-    if (overlaps(m_nodes[n.left].box, box)) stack[top++] = n.left;
-    if (overlaps(m_nodes[n.right].box, box)) stack[top++] = n.right;
-  }
-}
 
 template <class Visit>
 void Bvh::forEachOverlapAfter(const BoundingBox& box, int leaf, Visit&& visit) const {
